@@ -1,0 +1,284 @@
+//! Validation of a [`Robot`]: every rule, its tolerance, and the fix it suggests.
+//!
+//! | rule | tolerance |
+//! |---|---|
+//! | every number finite | exact |
+//! | revolute: `|ω| = 1` | [`UNIT_TOL`] |
+//! | prismatic: `ω = 0`, `|v| = 1` | [`UNIT_TOL`] |
+//! | home frames rigid: `RᵀR = 1`, `det R = 1`, last row `(0, 0, 0, 1)` | [`ORTHO_TOL`] |
+//! | `G_i` symmetric, lower-right block `m·1₃`, off-diagonal block `m[c]` (skew) | [`INERTIA_TOL`] · scale |
+//! | mass `m ≥ 0` | exact |
+//! | a massless link has no rotational inertia | [`INERTIA_TOL`] · scale |
+//! | rotational inertia about the COM positive semidefinite | [`INERTIA_TOL`] · scale |
+//! | principal moments meet the triangle inequality `I₁ + I₂ ≥ I₃` | [`INERTIA_TOL`] · scale |
+//!
+//! "scale" is the largest absolute entry of the matrix checked (at least 1e-300). Thin rods
+//! (`diag(4, 4, 0)`, the Exercise 8.4 pendulum) meet the triangle inequality with equality
+//! and are valid.
+
+use crate::error::{Invalid, Subject};
+use crate::lie::{angular, is_rigid_transform, linear};
+use crate::robot::{JointKind, Robot};
+use nalgebra::{Matrix3, Matrix4, SymmetricEigen};
+
+/// Tolerance on unit lengths of screw axes.
+pub const UNIT_TOL: f64 = 1e-9;
+/// Tolerance on the orthonormality of rotation matrices.
+pub const ORTHO_TOL: f64 = 1e-9;
+/// Relative tolerance on the structure and physical consistency of inertias.
+pub const INERTIA_TOL: f64 = 1e-9;
+
+/// Every rule broken by `robot`, in chain order (empty when the robot is valid).
+pub fn validate(robot: &Robot) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    if robot.joints.len() != robot.links.len() {
+        errors.push(Invalid::new(
+            Subject::Robot,
+            "joints",
+            format!(
+                "{} joints but {} links",
+                robot.joints.len(),
+                robot.links.len()
+            ),
+            "give one link per movable joint",
+        ));
+        return errors;
+    }
+    if robot.gravity.iter().any(|x| !x.is_finite()) {
+        errors.push(Invalid::new(
+            Subject::Robot,
+            "gravity",
+            format!("not finite: {:?}", robot.gravity.as_slice()),
+            "give three finite numbers in m/s²",
+        ));
+    }
+    for (i, j) in robot.joints.iter().enumerate() {
+        let subject = Subject::Joint {
+            index: Some(i),
+            name: j.name.clone(),
+        };
+        errors.extend(check_screw(subject, j.kind, &j.screw));
+        if let Some(l) = &j.limits {
+            if !(l.lower.is_finite() && l.upper.is_finite()) || l.lower > l.upper {
+                errors.push(Invalid::new(
+                    Subject::Joint {
+                        index: Some(i),
+                        name: j.name.clone(),
+                    },
+                    "limits",
+                    format!(
+                        "lower {} and upper {} are not an interval",
+                        l.lower, l.upper
+                    ),
+                    "give finite limits with lower ≤ upper, or none for an unlimited joint",
+                ));
+            }
+        }
+    }
+    for (i, l) in robot.links.iter().enumerate() {
+        let subject = Subject::Link {
+            index: Some(i),
+            name: l.name.clone(),
+        };
+        if let Some(e) = check_home(subject.clone(), "home", &l.home) {
+            errors.push(e);
+        }
+        errors.extend(check_spatial_inertia(subject, "inertia", &l.inertia.0));
+    }
+    if let Some(e) = check_home(Subject::EndEffector, "home", &robot.end_effector.home) {
+        errors.push(e);
+    }
+    errors
+}
+
+/// Checks a screw axis for its joint kind (see the module table).
+pub fn check_screw(subject: Subject, kind: JointKind, s: &nalgebra::Vector6<f64>) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    if s.iter().any(|x| !x.is_finite()) {
+        errors.push(Invalid::new(
+            subject,
+            "screw",
+            format!("not finite: {:?}", s.as_slice()),
+            "give six finite numbers (ω, v)",
+        ));
+        return errors;
+    }
+    let w = angular(s).norm();
+    let v = linear(s).norm();
+    match kind {
+        JointKind::Revolute => {
+            if (w - 1.0).abs() > UNIT_TOL {
+                errors.push(Invalid::new(
+                    subject,
+                    "screw",
+                    format!("a revolute joint needs |ω| = 1, but |ω| = {w}"),
+                    "normalise the axis direction ω (and v = −ω × q with it), or give `axis` and `point` instead",
+                ));
+            }
+        }
+        JointKind::Prismatic => {
+            if w > UNIT_TOL {
+                errors.push(Invalid::new(
+                    subject,
+                    "screw",
+                    format!("a prismatic joint needs ω = 0, but |ω| = {w}"),
+                    "give S = (0, 0, 0, v) with the unit direction of motion v, or make the joint revolute",
+                ));
+            } else if (v - 1.0).abs() > UNIT_TOL {
+                errors.push(Invalid::new(
+                    subject,
+                    "screw",
+                    format!("a prismatic joint needs |v| = 1, but |v| = {v}"),
+                    "normalise the direction of motion v",
+                ));
+            }
+        }
+    }
+    errors
+}
+
+/// Checks that `t` is a rigid transform (see the module table).
+pub fn check_home(subject: Subject, field: &str, t: &Matrix4<f64>) -> Option<Invalid> {
+    if t.iter().any(|x| !x.is_finite()) {
+        return Some(Invalid::new(
+            subject,
+            field,
+            "the home frame has a non-finite entry",
+            "give finite numbers",
+        ));
+    }
+    if is_rigid_transform(t, ORTHO_TOL) {
+        return None;
+    }
+    let r = crate::lie::rotation(t);
+    let ortho = (r.transpose() * r - Matrix3::identity()).amax();
+    Some(Invalid::new(
+        subject,
+        field,
+        format!(
+            "the home frame is not a rigid transform (‖RᵀR − 1‖max = {ortho:.3e}, det R = {:.6}, last row {:?})",
+            r.determinant(),
+            [t[(3, 0)], t[(3, 1)], t[(3, 2)], t[(3, 3)]]
+        ),
+        format!("give an orthonormal rotation with det +1 (within {ORTHO_TOL:e}) and last row (0, 0, 0, 1), e.g. as xyz + rpy"),
+    ))
+}
+
+/// Checks a 6×6 spatial inertia: structure, mass, and physical consistency of the
+/// rotational inertia about the centre of mass.
+pub fn check_spatial_inertia(
+    subject: Subject,
+    field: &str,
+    g: &nalgebra::Matrix6<f64>,
+) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    let err = |problem: String, fix: &str| Invalid::new(subject.clone(), field, problem, fix);
+    if g.iter().any(|x| !x.is_finite()) {
+        errors.push(err(
+            "the inertia has a non-finite entry".into(),
+            "give finite numbers",
+        ));
+        return errors;
+    }
+    let scale = g.amax().max(1e-300);
+    let tol = INERTIA_TOL * scale;
+    if (g - g.transpose()).amax() > tol {
+        errors.push(err(
+            "the 6×6 spatial inertia is not symmetric".into(),
+            "give a symmetric matrix [[I, m[c]], [m[c]ᵀ, m·1]]",
+        ));
+        return errors;
+    }
+    let m = g[(3, 3)];
+    let lower = g.fixed_view::<3, 3>(3, 3).into_owned();
+    if (lower - Matrix3::identity() * m).amax() > tol {
+        errors.push(err(
+            "the lower-right 3×3 block is not m·1₃".into(),
+            "the lower-right block of a spatial inertia is the mass times the identity",
+        ));
+        return errors;
+    }
+    let off = g.fixed_view::<3, 3>(0, 3).into_owned();
+    if (off + off.transpose()).amax() > tol {
+        errors.push(err(
+            "the upper-right 3×3 block is not skew-symmetric (it must be m[c])".into(),
+            "the off-diagonal blocks of a spatial inertia are m[c] and its transpose",
+        ));
+        return errors;
+    }
+    errors.extend(
+        check_mass_and_inertia(
+            subject.clone(),
+            field,
+            m,
+            &crate::inertia::SpatialInertia(*g).rotational_about_com(),
+        )
+        .into_iter(),
+    );
+    errors
+}
+
+/// Checks a mass and a rotational inertia about the centre of mass: `m ≥ 0`, no rotational
+/// inertia without mass, symmetric, positive semidefinite, triangle inequality.
+pub fn check_mass_and_inertia(
+    subject: Subject,
+    field: &str,
+    mass: f64,
+    i_com: &Matrix3<f64>,
+) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    let err = |problem: String, fix: &str| Invalid::new(subject.clone(), field, problem, fix);
+    if !mass.is_finite() || i_com.iter().any(|x| !x.is_finite()) {
+        errors.push(err(
+            "the mass or inertia is not finite".into(),
+            "give finite numbers",
+        ));
+        return errors;
+    }
+    if mass < 0.0 {
+        errors.push(err(
+            format!("negative mass {mass} kg"),
+            "give a mass ≥ 0 (0 for a massless link)",
+        ));
+        return errors;
+    }
+    let scale = i_com.amax();
+    if mass == 0.0 {
+        if scale > 0.0 {
+            errors.push(err(
+                format!("a massless link carries rotational inertia (largest entry {scale})"),
+                "give the link's mass, or set its rotational inertia to zero",
+            ));
+        }
+        return errors;
+    }
+    let tol = INERTIA_TOL * scale.max(1e-300);
+    if (i_com - i_com.transpose()).amax() > tol {
+        errors.push(err(
+            "the rotational inertia is not symmetric".into(),
+            "give ixy, ixz, iyz once each (the matrix is symmetric)",
+        ));
+        return errors;
+    }
+    let eig = SymmetricEigen::new(*i_com).eigenvalues;
+    let mut p = [eig[0], eig[1], eig[2]];
+    p.sort_by(f64::total_cmp);
+    if p[0] < -tol {
+        errors.push(err(
+            format!(
+                "the rotational inertia about the centre of mass is not positive semidefinite (principal moments {:.6e}, {:.6e}, {:.6e})",
+                p[0], p[1], p[2]
+            ),
+            "check the signs of the products of inertia (URDF ixy is +∫xy dm's negative: I = [[ixx, ixy, ixz], …])",
+        ));
+    } else if p[0] + p[1] < p[2] - tol {
+        errors.push(err(
+            format!(
+                "the principal moments {:.6e}, {:.6e}, {:.6e} break the triangle inequality (I₁ + I₂ ≥ I₃): no rigid body has this inertia",
+                p[0], p[1], p[2]
+            ),
+            "check the inertia values and their units (kg·m²); a thin rod has I₁ + I₂ = I₃ at most",
+        ));
+    }
+    errors
+}
