@@ -36,3 +36,9 @@ pub mod validate;
 pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
 pub use robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
+pub mod load;
+pub mod shipped;
+pub mod toml_format;
+pub mod urdf;
+
+pub use load::{load, load_file, Format, LoadOptions};

@@ -206,15 +206,12 @@ pub fn check_spatial_inertia(
         ));
         return errors;
     }
-    errors.extend(
-        check_mass_and_inertia(
-            subject.clone(),
-            field,
-            m,
-            &crate::inertia::SpatialInertia(*g).rotational_about_com(),
-        )
-        .into_iter(),
-    );
+    errors.extend(check_mass_and_inertia(
+        subject.clone(),
+        field,
+        m,
+        &crate::inertia::SpatialInertia(*g).rotational_about_com(),
+    ));
     errors
 }
 

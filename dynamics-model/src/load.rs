@@ -1,0 +1,105 @@
+//! Loading a robot from a file, a string or a shipped name, with the options every front end
+//! (CLI, build.rs, macros) shares.
+
+use crate::error::ModelError;
+use crate::robot::Robot;
+use nalgebra::Vector3;
+use std::path::Path;
+
+/// The format of a robot description.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// The TOML robot file of [`crate::toml_format`].
+    Toml,
+    /// URDF, read by [`crate::urdf`].
+    Urdf,
+}
+
+impl Format {
+    /// The format for a file name, by its extension (`.toml`, `.urdf` or `.xml`).
+    pub fn from_path(path: &Path) -> Option<Self> {
+        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+            "toml" => Some(Format::Toml),
+            "urdf" | "xml" => Some(Format::Urdf),
+            _ => None,
+        }
+    }
+}
+
+/// Options applied while loading.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// URDF: the link whose frame is the end-effector frame {n+1} (default: the child link
+    /// of the last movable joint).
+    pub tip: Option<String>,
+    /// URDF: movable joints to turn into fixed ones at the given value (rad or m), so that
+    /// their branches merge into their parents (e.g. gripper fingers).
+    pub lock: Vec<(String, f64)>,
+    /// Replaces the description's gravity vector (in {0}, m/s²).
+    pub gravity: Option<Vector3<f64>>,
+}
+
+/// Loads `spec`: a path to a `.toml` or `.urdf` file, or the name of a shipped robot
+/// ([`crate::shipped::NAMES`]). An existing file wins over a shipped name.
+pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
+    let path = Path::new(spec);
+    if path.is_file() {
+        return load_file(path, options);
+    }
+    if let Some(shipped) = crate::shipped::get(spec) {
+        return from_str(shipped.text, shipped.format, shipped.file, options);
+    }
+    if Format::from_path(path).is_some() || spec.contains('/') || spec.contains('\\') {
+        return Err(ModelError::Io {
+            file: spec.to_string(),
+            message: "no such file".into(),
+        });
+    }
+    Err(ModelError::UnknownRobot {
+        name: spec.to_string(),
+        known: crate::shipped::NAMES
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    })
+}
+
+/// Loads a robot file; the format comes from the extension.
+pub fn load_file(path: &Path, options: &LoadOptions) -> Result<Robot, ModelError> {
+    let file = path.display().to_string();
+    let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
+        file: file.clone(),
+        message: "unknown file type: the robot file must end in .toml or .urdf".into(),
+    })?;
+    let text = std::fs::read_to_string(path).map_err(|e| ModelError::Io {
+        file: file.clone(),
+        message: e.to_string(),
+    })?;
+    from_str(&text, format, &file, options)
+}
+
+/// Parses and validates a robot description held in memory; `file` names it in errors.
+pub fn from_str(
+    text: &str,
+    format: Format,
+    file: &str,
+    options: &LoadOptions,
+) -> Result<Robot, ModelError> {
+    let mut robot = match format {
+        Format::Toml => {
+            if options.tip.is_some() || !options.lock.is_empty() {
+                return Err(ModelError::Io {
+                    file: file.to_string(),
+                    message: "`tip` and `lock` apply to URDF files only; a TOML file states its chain and end effector itself".into(),
+                });
+            }
+            crate::toml_format::from_str(text, file)?
+        }
+        Format::Urdf => crate::urdf::from_str(text, file, options)?,
+    };
+    if let Some(g) = options.gravity {
+        robot.gravity = g;
+    }
+    robot.validate().map_err(|e| e.in_file(file))?;
+    Ok(robot)
+}
