@@ -93,17 +93,23 @@ pub fn exp6(s: &Vector6<f64>, theta: f64) -> Matrix4<f64> {
         return rp_to_trans(&Matrix3::identity(), &v);
     }
     let wn = skew(&(w / angle));
-    let (s_a, c_a) = angle.sin_cos();
+    let (s_a, c_a) = sin_cos(angle);
     let r = Matrix3::identity() + wn * s_a + wn * wn * (1.0 - c_a);
     let g = Matrix3::identity() * angle + wn * (1.0 - c_a) + wn * wn * (angle - s_a);
     rp_to_trans(&r, &(g * (v / angle)))
 }
 
+/// `(sin x, cos x)` through `libm`, so that the constants folded into generated code do not
+/// depend on the host's math library.
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    (libm::sin(x), libm::cos(x))
+}
+
 /// `R = Rz(yaw) Ry(pitch) Rx(roll)`, the URDF convention for `rpy`.
 pub fn rpy_to_rotation(roll: f64, pitch: f64, yaw: f64) -> Matrix3<f64> {
-    let (sr, cr) = roll.sin_cos();
-    let (sp, cp) = pitch.sin_cos();
-    let (sy, cy) = yaw.sin_cos();
+    let (sr, cr) = sin_cos(roll);
+    let (sp, cp) = sin_cos(pitch);
+    let (sy, cy) = sin_cos(yaw);
     let rx = Matrix3::new(1.0, 0.0, 0.0, 0.0, cr, -sr, 0.0, sr, cr);
     let ry = Matrix3::new(cp, 0.0, sp, 0.0, 1.0, 0.0, -sp, 0.0, cp);
     let rz = Matrix3::new(cy, -sy, 0.0, sy, cy, 0.0, 0.0, 0.0, 1.0);
