@@ -1,1 +1,3 @@
 //! Generator.
+pub mod expr;
+pub mod expand;

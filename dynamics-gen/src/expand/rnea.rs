@@ -1,0 +1,106 @@
+//! Symbolic recursive Newton–Euler inverse dynamics (Modern Robotics §8.3.2), in joint frames.
+//!
+//! ```text
+//! forward, i = 1..n:   V_i  = [Ad_{T_{i,i−1}}] V_{i−1} + A_i θ̇_i
+//!                      V̇_i  = [Ad_{T_{i,i−1}}] V̇_{i−1} + [ad_{V_i}] A_i θ̇_i + A_i θ̈_i
+//! backward, i = n..1:  F_i  = [Ad_{T_{i+1,i}}]ᵀ F_{i+1} + G_i V̇_i − [ad_{V_i}]ᵀ G_i V_i
+//!                      τ_i  = F_iᵀ A_i
+//! ```
+//!
+//! with `V_0 = 0`, `V̇_0 = (0, −g)` (gravity enters as an upward acceleration of the base) and
+//! `F_{n+1} = 0`. In joint frames `A_i` is `e_z` in the angular (revolute) or linear
+//! (prismatic) part, so `[ad_{V_i}] A_i θ̇_i` and `τ_i` are single components.
+//!
+//! `τ = M(θ) θ̈ + c(θ, θ̇) + g(θ)`; `g(θ)` is this with `θ̇ = θ̈ = 0`, `c(θ, θ̇)` with `θ̈ = 0` and
+//! no gravity.
+
+use super::spatial::{Inertia, JointMotion, Spatial, VectorOps};
+use crate::expr::{ExprGraph, ExprId};
+use dynamics_model::JointKind;
+
+/// τ for the given symbolic velocities and accelerations (use constant zeros to drop terms)
+/// and gravity `gravity` in {0}.
+pub fn rnea(
+    g: &mut ExprGraph,
+    joints: &[JointMotion<'_>],
+    qd: &[ExprId],
+    qdd: &[ExprId],
+    gravity: [f64; 3],
+) -> Vec<ExprId> {
+    let n = joints.len();
+    let zero = g.zero3();
+    let mut v = Spatial {
+        ang: zero,
+        lin: zero,
+    };
+    let minus_g = [-gravity[0], -gravity[1], -gravity[2]];
+    let mut vd = Spatial {
+        ang: zero,
+        lin: g.const3(minus_g),
+    };
+    let mut forces = Vec::with_capacity(n);
+    // Forward pass: twists and accelerations; the link wrench G V̇ − adᵀ_V G V.
+    for (i, jm) in joints.iter().enumerate() {
+        let mut vi = jm.motion_to_child(g, v);
+        let mut vdi = jm.motion_to_child(g, vd);
+        // [ad_V] A θ̇: for A = (e_z, 0) it is (ω × e_z, v × e_z) θ̇; for A = (0, e_z), (0, ω × e_z) θ̇.
+        let (ad_ang, ad_lin) = match jm.frame.kind {
+            JointKind::Revolute => {
+                let a = [vi.ang[1], g.neg(vi.ang[0]), g.zero()];
+                let b = [vi.lin[1], g.neg(vi.lin[0]), g.zero()];
+                (a, b)
+            }
+            JointKind::Prismatic => {
+                let b = [vi.ang[1], g.neg(vi.ang[0]), g.zero()];
+                (g.zero3(), b)
+            }
+        };
+        let ad_ang = g.scale3(qd[i], ad_ang);
+        let ad_lin = g.scale3(qd[i], ad_lin);
+        vdi.ang = g.add3(vdi.ang, ad_ang);
+        vdi.lin = g.add3(vdi.lin, ad_lin);
+        let k = match jm.frame.kind {
+            JointKind::Revolute => &mut vi.ang[2],
+            JointKind::Prismatic => &mut vi.lin[2],
+        };
+        *k = g.add(*k, qd[i]);
+        let k = match jm.frame.kind {
+            JointKind::Revolute => &mut vdi.ang[2],
+            JointKind::Prismatic => &mut vdi.lin[2],
+        };
+        *k = g.add(*k, qdd[i]);
+        // F = G V̇ − [ad_V]ᵀ G V, with −[ad_V]ᵀ (k, l) = (ω × k + v × l, ω × l).
+        let gi = Inertia::constant(g, &jm.frame.inertia);
+        let gvd = gi.apply(g, &vdi);
+        let p = gi.apply(g, &vi);
+        let wk = g.cross(vi.ang, p.ang);
+        let vl = g.cross(vi.lin, p.lin);
+        let wl = g.cross(vi.ang, p.lin);
+        let bias_ang = g.add3(wk, vl);
+        let f_ang = g.add3(gvd.ang, bias_ang);
+        let f_lin = g.add3(gvd.lin, wl);
+        forces.push(Spatial {
+            ang: f_ang,
+            lin: f_lin,
+        });
+        v = vi;
+        vd = vdi;
+    }
+    // Backward pass: accumulate wrenches toward the base; τ_i = A_iᵀ F_i.
+    let mut tau = vec![g.zero(); n];
+    let mut child: Option<Spatial> = None;
+    for i in (0..n).rev() {
+        let mut f = forces[i];
+        if let Some(fc) = child {
+            let fp = joints[i + 1].force_to_parent(g, fc);
+            f.ang = g.add3(f.ang, fp.ang);
+            f.lin = g.add3(f.lin, fp.lin);
+        }
+        tau[i] = match joints[i].frame.kind {
+            JointKind::Revolute => f.ang[2],
+            JointKind::Prismatic => f.lin[2],
+        };
+        child = Some(f);
+    }
+    tau
+}

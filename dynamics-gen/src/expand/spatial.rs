@@ -1,0 +1,388 @@
+//! Symbolic spatial algebra over the expression graph: 3-vectors, the joint transforms of
+//! [`super::frames`], twists `(ω, v)`, wrenches `(m, f)` and rigid-body inertias.
+//!
+//! Every operation goes through the graph's simplifying constructors, so multiplications
+//! by the zeros and ones of the robot's constants disappear as they are built.
+
+use super::frames::{BodyInertia, JointFrame};
+use crate::expr::{ExprGraph, ExprId};
+use dynamics_model::JointKind;
+
+/// A symbolic 3-vector.
+pub type V3 = [ExprId; 3];
+
+/// A symbolic twist `(ω, v)` or wrench `(m, f)`: angular part first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Spatial {
+    /// ω (twist) or m (wrench).
+    pub ang: V3,
+    /// v (twist) or f (wrench).
+    pub lin: V3,
+}
+
+/// A symbolic rigid-body inertia: mass `m`, first moment `h = m c`, rotational inertia `I_o`
+/// about the frame's origin as `[xx, yy, zz, xy, xz, yz]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Inertia {
+    /// m.
+    pub m: ExprId,
+    /// h = m c.
+    pub h: V3,
+    /// I_o.
+    pub i: [ExprId; 6],
+}
+
+/// The symbolic state of joint i: its constant frame change and `sin θ`, `cos θ` (revolute)
+/// or `θ` (prismatic).
+#[derive(Clone, Copy, Debug)]
+pub struct JointMotion<'a> {
+    /// The constants.
+    pub frame: &'a JointFrame,
+    /// `sin θ_i` (revolute) — unused for prismatic joints.
+    pub sin: ExprId,
+    /// `cos θ_i` (revolute) — unused for prismatic joints.
+    pub cos: ExprId,
+    /// `θ_i` itself (prismatic).
+    pub q: ExprId,
+}
+
+/// Graph helpers for vectors.
+pub trait VectorOps {
+    /// `c · x` for a constant `c`.
+    fn cmul(&mut self, c: f64, x: ExprId) -> ExprId;
+    /// `a + b`.
+    fn add3(&mut self, a: V3, b: V3) -> V3;
+    /// `a − b`.
+    fn sub3(&mut self, a: V3, b: V3) -> V3;
+    /// `s a` for a symbolic scalar `s`.
+    fn scale3(&mut self, s: ExprId, a: V3) -> V3;
+    /// `a × b`.
+    fn cross(&mut self, a: V3, b: V3) -> V3;
+    /// `R a` for a constant `R`.
+    fn rot(&mut self, r: &[[f64; 3]; 3], a: V3) -> V3;
+    /// `Rᵀ a` for a constant `R`.
+    fn rot_t(&mut self, r: &[[f64; 3]; 3], a: V3) -> V3;
+    /// The constant vector `c`.
+    fn const3(&mut self, c: [f64; 3]) -> V3;
+    /// The zero vector.
+    fn zero3(&mut self) -> V3;
+}
+
+impl VectorOps for ExprGraph {
+    fn cmul(&mut self, c: f64, x: ExprId) -> ExprId {
+        let c = self.constant(c);
+        self.mul(c, x)
+    }
+
+    fn add3(&mut self, a: V3, b: V3) -> V3 {
+        [
+            self.add(a[0], b[0]),
+            self.add(a[1], b[1]),
+            self.add(a[2], b[2]),
+        ]
+    }
+
+    fn sub3(&mut self, a: V3, b: V3) -> V3 {
+        [
+            self.sub(a[0], b[0]),
+            self.sub(a[1], b[1]),
+            self.sub(a[2], b[2]),
+        ]
+    }
+
+    fn scale3(&mut self, s: ExprId, a: V3) -> V3 {
+        [self.mul(s, a[0]), self.mul(s, a[1]), self.mul(s, a[2])]
+    }
+
+    fn cross(&mut self, a: V3, b: V3) -> V3 {
+        let mut out = [a[0]; 3];
+        for k in 0..3 {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let x = self.mul(a[i], b[j]);
+            let y = self.mul(a[j], b[i]);
+            out[k] = self.sub(x, y);
+        }
+        out
+    }
+
+    fn rot(&mut self, r: &[[f64; 3]; 3], a: V3) -> V3 {
+        let mut out = [a[0]; 3];
+        for (row, o) in r.iter().zip(out.iter_mut()) {
+            let terms = [
+                self.cmul(row[0], a[0]),
+                self.cmul(row[1], a[1]),
+                self.cmul(row[2], a[2]),
+            ];
+            *o = self.sum(&terms);
+        }
+        out
+    }
+
+    fn rot_t(&mut self, r: &[[f64; 3]; 3], a: V3) -> V3 {
+        let rt = [
+            [r[0][0], r[1][0], r[2][0]],
+            [r[0][1], r[1][1], r[2][1]],
+            [r[0][2], r[1][2], r[2][2]],
+        ];
+        self.rot(&rt, a)
+    }
+
+    fn const3(&mut self, c: [f64; 3]) -> V3 {
+        [
+            self.constant(c[0]),
+            self.constant(c[1]),
+            self.constant(c[2]),
+        ]
+    }
+
+    fn zero3(&mut self) -> V3 {
+        let z = self.zero();
+        [z, z, z]
+    }
+}
+
+/// `Rot_z(θ) a = (c a_x − s a_y, s a_x + c a_y, a_z)`.
+fn rot_z(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
+    let x1 = g.mul(c, a[0]);
+    let x2 = g.mul(s, a[1]);
+    let y1 = g.mul(s, a[0]);
+    let y2 = g.mul(c, a[1]);
+    [g.sub(x1, x2), g.add(y1, y2), a[2]]
+}
+
+/// `Rot_z(−θ) a = (c a_x + s a_y, −s a_x + c a_y, a_z)`.
+fn rot_z_t(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
+    let x1 = g.mul(c, a[0]);
+    let x2 = g.mul(s, a[1]);
+    let y1 = g.mul(c, a[1]);
+    let y2 = g.mul(s, a[0]);
+    [g.add(x1, x2), g.sub(y1, y2), a[2]]
+}
+
+/// `e_z × a = (−a_y, a_x, 0)`.
+fn ez_cross(g: &mut ExprGraph, a: V3) -> V3 {
+    [g.neg(a[1]), a[0], g.zero()]
+}
+
+impl JointMotion<'_> {
+    /// `[Ad_{T_{J_i,J_{i−1}}}] V`: a twist of {J_{i−1}} expressed in {J_i}.
+    /// With `T = (R, p)`: `ω' = R ω`, `v' = R v + p × ω'`, applied for `C_i` and then for
+    /// the joint's own `Rot_z(−θ)` or `Trans_z(−θ)`.
+    pub fn motion_to_child(&self, g: &mut ExprGraph, v: Spatial) -> Spatial {
+        let f = self.frame;
+        let w1 = g.rot(&f.r, v.ang);
+        let rv = g.rot(&f.r, v.lin);
+        let p = g.const3(f.p);
+        let pxw = g.cross(p, w1);
+        let v1 = g.add3(rv, pxw);
+        match f.kind {
+            JointKind::Revolute => Spatial {
+                ang: rot_z_t(g, self.sin, self.cos, w1),
+                lin: rot_z_t(g, self.sin, self.cos, v1),
+            },
+            JointKind::Prismatic => {
+                // p = −θ e_z: v' = v − θ (e_z × ω).
+                let ezw = ez_cross(g, w1);
+                let t = g.scale3(self.q, ezw);
+                Spatial {
+                    ang: w1,
+                    lin: g.sub3(v1, t),
+                }
+            }
+        }
+    }
+
+    /// `[Ad_{T_{J_i,J_{i−1}}}]ᵀ F`: a wrench of {J_i} expressed in {J_{i−1}}.
+    /// With `T = (R, p)`: `f' = Rᵀ f`, `m' = Rᵀ (m − p × f)`, applied for the joint's part
+    /// first and then for `C_i`.
+    pub fn force_to_parent(&self, g: &mut ExprGraph, w: Spatial) -> Spatial {
+        let f = self.frame;
+        let (m1, f1) = match f.kind {
+            JointKind::Revolute => (
+                rot_z(g, self.sin, self.cos, w.ang),
+                rot_z(g, self.sin, self.cos, w.lin),
+            ),
+            JointKind::Prismatic => {
+                // p = −θ e_z: m' = m + θ (e_z × f).
+                let ezf = ez_cross(g, w.lin);
+                let t = g.scale3(self.q, ezf);
+                (g.add3(w.ang, t), w.lin)
+            }
+        };
+        let p = g.const3(f.p);
+        let pxf = g.cross(p, f1);
+        let m2 = g.sub3(m1, pxf);
+        Spatial {
+            ang: g.rot_t(&f.r, m2),
+            lin: g.rot_t(&f.r, f1),
+        }
+    }
+
+    /// `[Ad_T]ᵀ G [Ad_T]` for `T = T_{J_i,J_{i−1}}`: an inertia of {J_i} expressed in {J_{i−1}}.
+    pub fn inertia_to_parent(&self, g: &mut ExprGraph, ib: &Inertia) -> Inertia {
+        let f = self.frame;
+        // Joint part: the pose of the intermediate frame in {J_i} is Rot_z(−θ) or Trans_z(−θ).
+        let mid = match f.kind {
+            JointKind::Revolute => rotate_inertia_z(g, self.sin, self.cos, ib),
+            JointKind::Prismatic => {
+                let zero = g.zero();
+                let p = [zero, zero, g.neg(self.q)];
+                shift_inertia(g, ib, p)
+            }
+        };
+        // Constant part: shift by p, then rotate by R (pose of {J_{i−1}} in the intermediate frame).
+        let p = g.const3(f.p);
+        let shifted = shift_inertia(g, &mid, p);
+        rotate_inertia_const(g, &f.r, &shifted)
+    }
+}
+
+/// Expresses an inertia in a frame whose origin is at `p` (same axes):
+/// `h' = h − m p`, `I' = I + [h][p] + [p][h] − m[p][p]`.
+fn shift_inertia(g: &mut ExprGraph, ib: &Inertia, p: V3) -> Inertia {
+    let mp = g.scale3(ib.m, p);
+    let h = g.sub3(ib.h, mp);
+    // [h][p] + [p][h] = p hᵀ + h pᵀ − 2(h·p) 1, and −m[p][p] = m(p·p 1 − p pᵀ).
+    let hp = g.dot(&ib.h, &p);
+    let pp = g.dot(&mp, &p);
+    let diag_common = {
+        let two_hp = g.cmul(2.0, hp);
+        g.sub(pp, two_hp)
+    };
+    let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+    let mut i = ib.i;
+    for (k, &(a, b)) in idx.iter().enumerate() {
+        let t1 = g.mul(p[a], ib.h[b]);
+        let t2 = g.mul(ib.h[a], p[b]);
+        let t3 = g.mul(mp[a], p[b]);
+        let s12 = g.add(t1, t2);
+        let mut delta = g.sub(s12, t3);
+        if a == b {
+            delta = g.add(delta, diag_common);
+        }
+        i[k] = g.add(ib.i[k], delta);
+    }
+    Inertia { m: ib.m, h, i }
+}
+
+fn sym(i: &[ExprId; 6]) -> [[ExprId; 3]; 3] {
+    [[i[0], i[3], i[4]], [i[3], i[1], i[5]], [i[4], i[5], i[2]]]
+}
+
+/// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old).
+fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
+    let h = g.rot_t(r, ib.h);
+    let s = sym(&ib.i);
+    // A = I R (columns), then I' = Rᵀ A.
+    let mut a = [[ib.m; 3]; 3];
+    for row in 0..3 {
+        for col in 0..3 {
+            let terms = [
+                g.cmul(r[0][col], s[row][0]),
+                g.cmul(r[1][col], s[row][1]),
+                g.cmul(r[2][col], s[row][2]),
+            ];
+            a[row][col] = g.sum(&terms);
+        }
+    }
+    let mut out = ib.i;
+    let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+    for (k, &(x, y)) in idx.iter().enumerate() {
+        let terms = [
+            g.cmul(r[0][x], a[0][y]),
+            g.cmul(r[1][x], a[1][y]),
+            g.cmul(r[2][x], a[2][y]),
+        ];
+        out[k] = g.sum(&terms);
+    }
+    Inertia { m: ib.m, h, i: out }
+}
+
+/// The inertia in a frame rotated by `Rot_z(−θ)` about z: `I' = R_z(θ) I R_z(θ)ᵀ`,
+/// `h' = R_z(θ) h`, written with the double-angle products to share work.
+fn rotate_inertia_z(g: &mut ExprGraph, s: ExprId, c: ExprId, ib: &Inertia) -> Inertia {
+    let h = rot_z(g, s, c, ib.h);
+    let [ixx, iyy, izz, ixy, ixz, iyz] = ib.i;
+    // xz/yz rotate like a vector.
+    let ixz2 = {
+        let a = g.mul(c, ixz);
+        let b = g.mul(s, iyz);
+        g.sub(a, b)
+    };
+    let iyz2 = {
+        let a = g.mul(s, ixz);
+        let b = g.mul(c, iyz);
+        g.add(a, b)
+    };
+    // The xy block: with d = (ixx − iyy)/2, a = (ixx + iyy)/2,
+    // ixx' = a + d cos2θ − ixy sin2θ, iyy' = a − d cos2θ + ixy sin2θ, ixy' = d sin2θ + ixy cos2θ.
+    let cc = g.mul(c, c);
+    let ss = g.mul(s, s);
+    let sc = g.mul(s, c);
+    let cos2 = g.sub(cc, ss);
+    let sin2 = g.cmul(2.0, sc);
+    let sum = g.add(ixx, iyy);
+    let a = g.cmul(0.5, sum);
+    let diff = g.sub(ixx, iyy);
+    let d = g.cmul(0.5, diff);
+    let dc = g.mul(d, cos2);
+    let xs = g.mul(ixy, sin2);
+    let u = g.sub(dc, xs);
+    let ixx2 = g.add(a, u);
+    let iyy2 = g.sub(a, u);
+    let ds = g.mul(d, sin2);
+    let xc = g.mul(ixy, cos2);
+    let ixy2 = g.add(ds, xc);
+    Inertia {
+        m: ib.m,
+        h,
+        i: [ixx2, iyy2, izz, ixy2, ixz2, iyz2],
+    }
+}
+
+impl Inertia {
+    /// The constant inertia `b`.
+    pub fn constant(g: &mut ExprGraph, b: &BodyInertia) -> Self {
+        Self {
+            m: g.constant(b.m),
+            h: g.const3(b.h),
+            i: [
+                g.constant(b.i[0]),
+                g.constant(b.i[1]),
+                g.constant(b.i[2]),
+                g.constant(b.i[3]),
+                g.constant(b.i[4]),
+                g.constant(b.i[5]),
+            ],
+        }
+    }
+
+    /// `a + b`.
+    pub fn add(g: &mut ExprGraph, a: &Inertia, b: &Inertia) -> Self {
+        let mut i = a.i;
+        for k in 0..6 {
+            i[k] = g.add(a.i[k], b.i[k]);
+        }
+        Self {
+            m: g.add(a.m, b.m),
+            h: g.add3(a.h, b.h),
+            i,
+        }
+    }
+
+    /// The momentum `G V = (I_o ω + h × v, m v − h × ω)`.
+    pub fn apply(&self, g: &mut ExprGraph, v: &Spatial) -> Spatial {
+        let s = sym(&self.i);
+        let mut iw = [self.m; 3];
+        for r in 0..3 {
+            iw[r] = g.dot(&s[r], &v.ang);
+        }
+        let hxv = g.cross(self.h, v.lin);
+        let hxw = g.cross(self.h, v.ang);
+        let mv = g.scale3(self.m, v.lin);
+        Spatial {
+            ang: g.add3(iw, hxv),
+            lin: g.sub3(mv, hxw),
+        }
+    }
+}
