@@ -69,7 +69,17 @@ mod tests {
 
     #[test]
     fn display_round_trips() {
-        for v in [2.0, -3.0, 0.5, 1e-7, 1.5e300, 0.1, -1e20, 123456.0, 1.0 / 3.0] {
+        for v in [
+            2.0,
+            -3.0,
+            0.5,
+            1e-7,
+            1.5e300,
+            0.1,
+            -1e20,
+            123456.0,
+            1.0 / 3.0,
+        ] {
             let s = Const::new(v).unwrap().to_string();
             assert_eq!(s.parse::<f64>().unwrap(), v, "{s}");
         }

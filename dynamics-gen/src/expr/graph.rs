@@ -1,7 +1,7 @@
 //! The [`ExprGraph`] arena: storage, hash-consing, leaves and accessors.
 //!
 //! The simplifying operator constructors (`neg`, `add`, `mul`, ...) live in
-//! [`simplify`](super::simplify); this file holds everything that does not
+//! `simplify.rs`; this file holds everything that does not
 //! rewrite.
 
 use std::collections::HashMap;
@@ -173,12 +173,16 @@ mod tests {
         assert_eq!(g.len(), 3);
         assert_eq!(g.try_constant(f64::NAN), None);
         assert_eq!(g.as_const(two), Some(2.0));
-        assert!(g.is_zero(g.zero()));
+        let z = g.zero();
+        assert!(g.is_zero(z));
         assert!(!g.is_zero(q0));
         assert_eq!(g.find_input(Input::new(0, 0)), Some(q0));
         assert_eq!(g.find_input(Input::new(0, 1)), None);
         g.input(Input::new(1, 0));
-        assert_eq!(g.inputs().collect::<Vec<_>>(), vec![Input::new(0, 0), Input::new(1, 0)]);
+        assert_eq!(
+            g.inputs().collect::<Vec<_>>(),
+            vec![Input::new(0, 0), Input::new(1, 0)]
+        );
     }
 
     #[test]

@@ -84,9 +84,7 @@ impl Node {
         let (ops, n) = match *self {
             Node::Const(_) | Node::Input(_) => ([z, z], 0),
             Node::Neg(a) | Node::Sqrt(a) | Node::Sin(a) | Node::Cos(a) => ([a, z], 1),
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                ([a, b], 2)
-            }
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => ([a, b], 2),
         };
         ops.into_iter().take(n)
     }
