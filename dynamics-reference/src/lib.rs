@@ -1,1 +1,88 @@
-//! Reference.
+//! Generic recursive rigid-body dynamics of an open serial chain, written plainly after
+//! Modern Robotics (Lynch & Park), sections 8.3–8.5, with the semantics of the book's Python
+//! library (`InverseDynamics`, `MassMatrix`, `ForwardDynamics`, …).
+//!
+//! This crate is the reference every generated function is checked against. It depends only
+//! on the robot model ([`dynamics_model`]) and [`nalgebra`], so it cannot share code with the
+//! generator's symbolic recursion. It favours clarity over speed: `f64`, heap vectors, loops
+//! over the joints, one algorithm per file with the equation it computes in its doc comment.
+//!
+//! # Conventions
+//!
+//! - Units SI: m, kg, s, rad, N, N·m. Joint values are rad (revolute) or m (prismatic).
+//! - Twists and screw axes are `(ω, v)`, angular part first; wrenches are `(m, f)`, moment first.
+//! - Frames: {0} is the space frame, {i} the frame of link i (i = 1..n), {n+1} the
+//!   end-effector frame. `G_i` is link i's spatial inertia in {i}; {i} need not be at the
+//!   centre of mass (the full 6×6 is used everywhere, the centre of mass for the potential
+//!   energy comes from [`dynamics_model::SpatialInertia::com`]).
+//! - `A_i = [Ad_{M_{0i}⁻¹}] S_i` is joint i's screw axis in {i};
+//!   `T_{i,i−1} = e^{−[A_i]θ_i} M_{i−1,i}⁻¹` and `T_{n+1,n} = M_{n,n+1}⁻¹` (see [`ChainFrames`]).
+//! - `V̇_0 = (0, −g)`: gravity enters as an upward acceleration of the base, so `g` is the
+//!   gravity vector in {0} (e.g. `(0, 0, −9.81)`), passed explicitly like the book's functions
+//!   do (use [`dynamics_model::Robot::gravity`] for the robot's own).
+//! - `F_tip` is the wrench `(m, f)` the end effector applies **to the environment**, expressed
+//!   in {n+1}.
+//! - The equations of motion are
+//!   `τ = M(θ) θ̈ + c(θ, θ̇) + g(θ) + J_b(θ)ᵀ F_tip`, where `J_b` is the body Jacobian of {n+1},
+//!   `c = C(θ, θ̇) θ̇` (Coriolis and centripetal terms) and `g(θ) = ∂P/∂θ`.
+//!
+//! # API
+//!
+//! Every function takes the robot first. Joint-space vectors (θ, θ̇, θ̈, τ) are `&[f64]` of
+//! length n = [`dynamics_model::Robot::dof`] (a `DVector` passes with `.as_slice()`); gravity is
+//! a `&Vector3<f64>`, `F_tip` a `&Vector6<f64>`. Results are `DVector<f64>` / `DMatrix<f64>`.
+//! Trajectories are `DMatrix<f64>` with one row per time step (N×n, and N×6 for `F_tip`), as in
+//! the book's library.
+//!
+//! A joint vector whose length is not n is a programming error and panics with a message that
+//! names the argument; everything else (including a mass matrix that is not positive definite)
+//! is reported through [`ReferenceError`].
+//!
+//! The functions accept every robot [`dynamics_model::Robot::from_mr_lists_unchecked`] builds,
+//! e.g. a screw axis with `|ω| ≠ 1`, as the book's library does.
+
+mod chain;
+mod check;
+mod coriolis_matrix;
+mod end_effector_forces;
+mod end_effector_pose;
+mod error;
+mod euler_step;
+mod forward_dynamics;
+mod forward_dynamics_trajectory;
+mod gravity_forces;
+mod inverse_dynamics;
+mod inverse_dynamics_trajectory;
+mod jacobian_body;
+mod jacobian_space;
+mod kinetic_energy;
+mod link_poses;
+mod mass_matrix;
+mod mass_matrix_dot;
+mod potential_energy;
+mod vel_quadratic_forces;
+
+pub use chain::ChainFrames;
+pub use coriolis_matrix::{coriolis_matrix, mass_matrix_partials};
+pub use end_effector_forces::end_effector_forces;
+pub use end_effector_pose::end_effector_pose;
+pub use error::ReferenceError;
+pub use euler_step::euler_step;
+pub use forward_dynamics::forward_dynamics;
+pub use forward_dynamics_trajectory::forward_dynamics_trajectory;
+pub use gravity_forces::gravity_forces;
+pub use inverse_dynamics::inverse_dynamics;
+pub use inverse_dynamics_trajectory::inverse_dynamics_trajectory;
+pub use jacobian_body::jacobian_body;
+pub use jacobian_space::jacobian_space;
+pub use kinetic_energy::kinetic_energy;
+pub use link_poses::link_poses;
+pub use mass_matrix::mass_matrix;
+pub use mass_matrix_dot::mass_matrix_dot;
+pub use potential_energy::potential_energy;
+pub use vel_quadratic_forces::vel_quadratic_forces;
+
+/// The literature acronym for [`inverse_dynamics`]: the recursive Newton–Euler algorithm.
+pub use inverse_dynamics::inverse_dynamics as rnea;
+/// The literature acronym for [`mass_matrix`]: the composite-rigid-body algorithm.
+pub use mass_matrix::mass_matrix as crba;

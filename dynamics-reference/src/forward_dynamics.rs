@@ -1,0 +1,40 @@
+//! Forward dynamics by solving the joint-space equations of motion (Modern Robotics §8.5).
+
+use crate::error::ReferenceError;
+use crate::inverse_dynamics::inverse_dynamics;
+use crate::mass_matrix::mass_matrix;
+use dynamics_model::Robot;
+use nalgebra::{DVector, Vector3, Vector6};
+
+/// `θ̈` from `M(θ) θ̈ = τ − c(θ, θ̇) − g(θ) − J_b(θ)ᵀ F_tip`, the book's `ForwardDynamics`.
+///
+/// The right-hand side takes one Newton–Euler pass, `c + g + J_bᵀ F_tip = ID(θ, θ̇, 0, g, F_tip)`;
+/// `M` comes from [`mass_matrix`] and is factorised by Cholesky, `M = L Lᵀ`, and solved (never
+/// inverted). The book inverts `M` explicitly, so results differ from it at rounding level.
+///
+/// # Errors
+/// [`ReferenceError::MassMatrixNotPositiveDefinite`] when the Cholesky factorisation fails.
+///
+/// # Panics
+/// If `q`, `qd` or `tau` does not have `robot.dof()` entries.
+pub fn forward_dynamics(
+    robot: &Robot,
+    q: &[f64],
+    qd: &[f64],
+    tau: &[f64],
+    gravity: &Vector3<f64>,
+    f_tip: &Vector6<f64>,
+) -> Result<DVector<f64>, ReferenceError> {
+    crate::check::joint_vector(robot, "tau", tau);
+    let zero = vec![0.0; robot.dof()];
+    let bias = inverse_dynamics(robot, q, qd, &zero, gravity, f_tip);
+    let rhs = DVector::from_column_slice(tau) - bias;
+    let m = mass_matrix(robot, q);
+    match m.cholesky() {
+        Some(chol) => Ok(chol.solve(&rhs)),
+        None => Err(ReferenceError::MassMatrixNotPositiveDefinite {
+            q: q.to_vec(),
+            step: None,
+        }),
+    }
+}
