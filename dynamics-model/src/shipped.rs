@@ -17,10 +17,18 @@ pub struct Shipped {
 }
 
 /// Every shipped robot.
-pub const ROBOTS: &[Shipped] = &[];
+pub const ROBOTS: &[Shipped] = &[
+    // Universal Robots UR5 (example-robot-data, BSD-3-Clause; see robots/README.md).
+    Shipped {
+        name: "ur5",
+        file: "robots/ur5.urdf",
+        format: Format::Urdf,
+        text: include_str!("../../robots/ur5.urdf"),
+    },
+];
 
 /// The names of the shipped robots.
-pub const NAMES: &[&str] = &[];
+pub const NAMES: &[&str] = &["ur5"];
 
 /// The shipped robot called `name`.
 pub fn get(name: &str) -> Option<Shipped> {

@@ -1,0 +1,360 @@
+//! URDF `<joint>` and `<link>` elements to checked numbers: each joint's transform (with a
+//! locked joint's motion folded in), unit axis, limits and friction; each link's mass and
+//! inertia.
+//!
+//! - A joint's transform from its parent link's frame to its child link's frame at q = 0 is
+//!   `T = [[Rz(y) Ry(p) Rx(r), xyz], [0, 1]]` (its `<origin>`); a joint locked at value θ
+//!   becomes fixed with `T e^{[A]θ}`, `A = (a, 0)` for a revolute joint about the unit axis
+//!   `a` (in the joint frame), `A = (0, a)` for a prismatic one.
+//! - `<axis>` defaults to `(1, 0, 0)` and is normalised; a zero axis is an error.
+//! - Limits with `lower = upper = 0` (and a continuous joint's) mean unlimited.
+//! - A link's `<inertial>` gives the mass m, the tensor `I = [[ixx, ixy, ixz], [ixy, iyy,
+//!   iyz], [ixz, iyz, izz]]` about the centre of mass in the frame of `<inertial><origin>`;
+//!   no `<inertial>` means massless.
+
+use super::origin::origin_transform;
+use crate::error::{Invalid, Subject};
+use crate::lie::{exp6, twist};
+use crate::robot::{JointKind, JointLimits};
+use crate::validate::check_mass_and_inertia;
+use nalgebra::{Matrix3, Matrix4, Vector3};
+use std::collections::HashMap;
+
+/// A URDF joint after checking: movable (with its kind) or fixed.
+#[derive(Clone, Debug)]
+pub struct JointModel {
+    /// `Some(kind)` for a movable joint, `None` for a fixed (or locked) one.
+    pub kind: Option<JointKind>,
+    /// Parent link frame → child link frame at q = 0 (a locked joint's value included).
+    pub transform: Matrix4<f64>,
+    /// The unit axis in the joint frame (movable joints).
+    pub axis: Vector3<f64>,
+    /// Position limits (movable joints; `None` when unlimited).
+    pub limits: Option<JointLimits>,
+    /// `<dynamics damping>`.
+    pub damping: f64,
+    /// `<dynamics friction>`.
+    pub friction: f64,
+}
+
+/// A URDF link's mass properties after checking.
+#[derive(Clone, Debug)]
+pub struct LinkModel {
+    /// Mass (kg), 0 without `<inertial>`.
+    pub mass: f64,
+    /// Rotational inertia about the centre of mass, in the `<inertial><origin>` frame.
+    pub inertia: Matrix3<f64>,
+    /// Pose of that frame in the link frame.
+    pub com_frame: Matrix4<f64>,
+}
+
+fn joint_subject(name: &str) -> Subject {
+    Subject::Joint {
+        index: None,
+        name: name.to_string(),
+    }
+}
+
+fn all_finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// The lock values by joint index, checking that every locked joint exists and can move.
+pub fn locks(
+    robot: &urdf_rs::Robot,
+    lock: &[(String, f64)],
+) -> Result<HashMap<usize, f64>, Vec<Invalid>> {
+    let movable: Vec<&str> = robot
+        .joints
+        .iter()
+        .filter(|j| is_one_dof(&j.joint_type))
+        .map(|j| j.name.as_str())
+        .collect();
+    let mut out = HashMap::new();
+    let mut errors = Vec::new();
+    for (name, value) in lock {
+        let found = robot.joints.iter().position(|j| &j.name == name);
+        match found {
+            Some(ji) if is_one_dof(&robot.joints[ji].joint_type) => {
+                if !value.is_finite() {
+                    errors.push(Invalid::new(
+                        joint_subject(name),
+                        "lock",
+                        format!("the lock value {value} is not finite"),
+                        "give a finite joint value (rad or m)",
+                    ));
+                } else if out.insert(ji, *value).is_some() {
+                    errors.push(Invalid::new(
+                        joint_subject(name),
+                        "lock",
+                        "the joint is locked twice",
+                        "lock each joint once",
+                    ));
+                }
+            }
+            other => errors.push(Invalid::new(
+                joint_subject(name),
+                "lock",
+                if other.is_some() {
+                    "only a movable joint (revolute, continuous, prismatic) can be locked; this one is not".to_string()
+                } else {
+                    "the file has no joint of this name".to_string()
+                },
+                format!("lock one of the movable joints: {}", movable.join(", ")),
+            )),
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}
+
+fn is_one_dof(t: &urdf_rs::JointType) -> bool {
+    matches!(
+        t,
+        urdf_rs::JointType::Revolute
+            | urdf_rs::JointType::Continuous
+            | urdf_rs::JointType::Prismatic
+    )
+}
+
+/// Checks a joint and computes its [`JointModel`]; `lock` is its lock value, if any.
+pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<Invalid>> {
+    use urdf_rs::JointType as T;
+    let subject = || joint_subject(&j.name);
+    let mut errors = Vec::new();
+    let kind = match j.joint_type {
+        T::Fixed => None,
+        T::Revolute | T::Continuous => Some(JointKind::Revolute),
+        T::Prismatic => Some(JointKind::Prismatic),
+        T::Floating | T::Planar | T::Spherical => {
+            let t = format!("{:?}", j.joint_type).to_lowercase();
+            return Err(vec![Invalid::new(
+                subject(),
+                "type",
+                format!("joint type `{t}` is not supported (only revolute, continuous, prismatic and fixed)"),
+                "model the joint as a chain of 1-dof joints, or make it fixed",
+            )]);
+        }
+    };
+    for (field, v) in [
+        ("origin.xyz", j.origin.xyz.0),
+        ("origin.rpy", j.origin.rpy.0),
+    ] {
+        if !all_finite(&v) {
+            errors.push(Invalid::new(
+                subject(),
+                field,
+                format!("not finite: {v:?}"),
+                "give three finite numbers",
+            ));
+        }
+    }
+    let transform = origin_transform(&j.origin);
+    let Some(kind) = kind else {
+        return if errors.is_empty() {
+            Ok(JointModel {
+                kind: None,
+                transform,
+                axis: Vector3::x(),
+                limits: None,
+                damping: 0.0,
+                friction: 0.0,
+            })
+        } else {
+            Err(errors)
+        };
+    };
+    if j.mimic.is_some() && lock.is_none() {
+        errors.push(Invalid::new(
+            subject(),
+            "mimic",
+            format!(
+                "a movable joint that mimics joint `{}` is not supported (it is not an independent joint)",
+                j.mimic.as_ref().map_or("", |m| m.joint.as_str())
+            ),
+            format!("lock it at a value with `--lock {}=VALUE`, or make it fixed", j.name),
+        ));
+    }
+    let a = Vector3::from(j.axis.xyz.0);
+    let axis = if !all_finite(a.as_slice()) {
+        errors.push(Invalid::new(
+            subject(),
+            "axis",
+            format!("not finite: {:?}", j.axis.xyz.0),
+            "give three finite numbers",
+        ));
+        Vector3::x()
+    } else if a.norm() == 0.0 {
+        errors.push(Invalid::new(
+            subject(),
+            "axis",
+            "the axis is zero",
+            "give the joint's axis direction, e.g. <axis xyz=\"0 0 1\"/>",
+        ));
+        Vector3::x()
+    } else {
+        a / a.norm()
+    };
+    let limits = limits(j, &mut errors);
+    let (damping, friction) = j
+        .dynamics
+        .as_ref()
+        .map_or((0.0, 0.0), |d| (d.damping, d.friction));
+    for (field, v) in [
+        ("dynamics.damping", damping),
+        ("dynamics.friction", friction),
+    ] {
+        if !v.is_finite() {
+            errors.push(Invalid::new(
+                subject(),
+                field,
+                format!("not finite: {v}"),
+                "give a finite number",
+            ));
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    match lock {
+        Some(value) => {
+            let motion = match kind {
+                JointKind::Revolute => twist(&axis, &Vector3::zeros()),
+                JointKind::Prismatic => twist(&Vector3::zeros(), &axis),
+            };
+            Ok(JointModel {
+                kind: None,
+                transform: transform * exp6(&motion, value),
+                axis,
+                limits: None,
+                damping: 0.0,
+                friction: 0.0,
+            })
+        }
+        None => Ok(JointModel {
+            kind: Some(kind),
+            transform,
+            axis,
+            limits: if j.joint_type == T::Continuous {
+                None
+            } else {
+                limits
+            },
+            damping,
+            friction,
+        }),
+    }
+}
+
+/// The `<limit>` of a movable joint: `None` when unlimited (`lower = upper = 0`, or both
+/// infinite as URDF 1.2 writes omitted limits).
+fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> {
+    let l = &j.limit;
+    if l.lower.is_nan() || l.upper.is_nan() || l.velocity.is_nan() || l.effort.is_nan() {
+        errors.push(Invalid::new(
+            joint_subject(&j.name),
+            "limit",
+            format!(
+                "not a number: lower {}, upper {}, velocity {}, effort {}",
+                l.lower, l.upper, l.velocity, l.effort
+            ),
+            "give numbers",
+        ));
+        return None;
+    }
+    if (l.lower == 0.0 && l.upper == 0.0) || !(l.lower.is_finite() && l.upper.is_finite()) {
+        return None;
+    }
+    if l.lower > l.upper {
+        errors.push(Invalid::new(
+            joint_subject(&j.name),
+            "limit",
+            format!("lower {} is above upper {}", l.lower, l.upper),
+            "give lower ≤ upper",
+        ));
+        return None;
+    }
+    let positive = |v: f64| (v.is_finite() && v > 0.0).then_some(v);
+    Some(JointLimits {
+        lower: l.lower,
+        upper: l.upper,
+        velocity: positive(l.velocity),
+        effort: positive(l.effort),
+    })
+}
+
+/// Checks a link's `<inertial>` (finite, `m ≥ 0`, a physically possible tensor) and
+/// returns its [`LinkModel`].
+pub fn link(l: &urdf_rs::Link) -> Result<LinkModel, Vec<Invalid>> {
+    let subject = || Subject::Link {
+        index: None,
+        name: l.name.clone(),
+    };
+    let inertial = &l.inertial;
+    let i = &inertial.inertia;
+    let tensor = Matrix3::new(
+        i.ixx, i.ixy, i.ixz, //
+        i.ixy, i.iyy, i.iyz, //
+        i.ixz, i.iyz, i.izz,
+    );
+    let mass = inertial.mass.value;
+    let mut errors = Vec::new();
+    for (field, v) in [
+        ("inertial.origin.xyz", inertial.origin.xyz.0),
+        ("inertial.origin.rpy", inertial.origin.rpy.0),
+    ] {
+        if !all_finite(&v) {
+            errors.push(Invalid::new(
+                subject(),
+                field,
+                format!("not finite: {v:?}"),
+                "give three finite numbers",
+            ));
+        }
+    }
+    if !mass.is_finite() {
+        errors.push(Invalid::new(
+            subject(),
+            "inertial.mass",
+            format!("not finite: {mass}"),
+            "give the mass in kg",
+        ));
+    } else if mass < 0.0 {
+        errors.push(Invalid::new(
+            subject(),
+            "inertial.mass",
+            format!("negative mass {mass} kg"),
+            "give a mass ≥ 0 in kg (0, or no <inertial>, for a massless link)",
+        ));
+    }
+    if !all_finite(tensor.as_slice()) {
+        errors.push(Invalid::new(
+            subject(),
+            "inertial.inertia",
+            format!(
+                "not finite: ixx {} ixy {} ixz {} iyy {} iyz {} izz {}",
+                i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz
+            ),
+            "give finite numbers in kg·m²",
+        ));
+    }
+    if errors.is_empty() {
+        errors.extend(check_mass_and_inertia(
+            subject(),
+            "inertial.inertia",
+            mass,
+            &tensor,
+        ));
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(LinkModel {
+        mass,
+        inertia: tensor,
+        com_frame: origin_transform(&inertial.origin),
+    })
+}
