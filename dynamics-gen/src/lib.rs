@@ -1,3 +1,18 @@
-//! Generator.
-pub mod expr;
+//! dynamics-gen: turns a robot arm's description into unrolled, allocation-free Rust
+//! functions for its rigid-body dynamics.
+//!
+//! Pipeline: model ([`dynamics_model`]: robot, loaders, validation) → [`expand`] (symbolic
+//! recursions over the [`expr`] graph, every constant of the robot folded in) → [`emit`]
+//! (tokens, prettyplease, `@generated` header), with the front ends on top: the build.rs
+//! [`Builder`], the `dynamics-gen` CLI and the `dynamics-macros` proc-macros.
+
+pub mod emit;
+pub mod error;
 pub mod expand;
+pub mod expr;
+pub mod options;
+
+pub use dynamics_model;
+pub use emit::{generate_file, generate_impl, Generated};
+pub use error::Error;
+pub use options::{Options, Scalar};

@@ -1,0 +1,281 @@
+//! One generated function: the schedule of `let` bindings over the live part of the graph
+//! and the tokens of its body.
+//!
+//! A node gets a `let` when the function uses it more than once, or when it is a division
+//! or square root; every other node is written inline into its single user. Inputs are
+//! unpacked by destructuring nalgebra's array storage (no indexing, so no panic path);
+//! `sin q_i` and `cos q_i` come from one `sin_cos` per argument; outputs are packed into
+//! `ArrayStorage` column by column. Bindings are numbered in graph order, which is
+//! deterministic, so the output is byte-identical across runs.
+
+use super::literal::float_tokens;
+use crate::expr::{ExprGraph, ExprId, Input, Node};
+use crate::options::Scalar;
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+
+/// An argument of a generated function: a vector input named `name` of group `group`.
+#[derive(Clone, Debug)]
+pub struct Arg {
+    /// The Rust parameter name (`q`, `qd`, `qdd`, `tau`).
+    pub name: &'static str,
+    /// The graph input group it fills.
+    pub group: u8,
+}
+
+/// Everything the body writer needs.
+pub struct FunctionBody<'a> {
+    /// The graph.
+    pub graph: &'a ExprGraph,
+    /// The arguments.
+    pub args: &'a [Arg],
+    /// The outputs, row-major (`rows × cols`).
+    pub outputs: &'a [ExprId],
+    /// Output rows.
+    pub rows: usize,
+    /// Output columns (1 for a vector).
+    pub cols: usize,
+    /// The scalar type.
+    pub scalar: Scalar,
+    /// `no_std`: trigonometry through `libm`.
+    pub no_std: bool,
+    /// The nalgebra path tokens.
+    pub nalgebra: &'a TokenStream,
+    /// The dimension n (for unpacking inputs).
+    pub dof: usize,
+}
+
+#[derive(Clone)]
+enum Binding {
+    /// Written inline where used.
+    Inline,
+    /// A `let` binding or an input name.
+    Named(Ident),
+}
+
+impl FunctionBody<'_> {
+    /// The body of the function, as a block's statements.
+    pub fn tokens(&self) -> TokenStream {
+        let g = self.graph;
+        let live = g.live(self.outputs);
+        let uses = g.use_counts(self.outputs);
+        let mut bind: Vec<Binding> = vec![Binding::Inline; g.len()];
+        let mut stmts = TokenStream::new();
+
+        // Inputs.
+        for arg in self.args {
+            let names: Vec<TokenStream> = (0..self.dof)
+                .map(|i| {
+                    let input = Input::new(arg.group, i as u16);
+                    match g.find_input(input) {
+                        Some(id) if live[id.index()] => {
+                            let name = format_ident!("{}{}", arg.name, i);
+                            bind[id.index()] = Binding::Named(name.clone());
+                            quote!(#name)
+                        }
+                        _ => quote!(_),
+                    }
+                })
+                .collect();
+            let arg_ident = Ident::new(arg.name, Span::call_site());
+            stmts.extend(quote! { let [[#(#names),*]] = #arg_ident.data.0; });
+        }
+
+        // sin/cos pairs: one binding per argument with a live sin or cos.
+        let mut trig: Vec<(ExprId, Option<ExprId>, Option<ExprId>)> = Vec::new();
+        for (k, node) in g.nodes().iter().enumerate() {
+            if !live[k] {
+                continue;
+            }
+            let (arg, is_sin) = match node {
+                Node::Sin(a) => (*a, true),
+                Node::Cos(a) => (*a, false),
+                _ => continue,
+            };
+            let pos = match trig.iter().position(|t| t.0 == arg) {
+                Some(p) => p,
+                None => {
+                    trig.push((arg, None, None));
+                    trig.len() - 1
+                }
+            };
+            if is_sin {
+                trig[pos].1 = Some(ExprId(k as u32));
+            } else {
+                trig[pos].2 = Some(ExprId(k as u32));
+            }
+        }
+
+        let mut counter = 0usize;
+        let mut trig_done = vec![false; trig.len()];
+        for k in 0..g.len() {
+            if !live[k] {
+                continue;
+            }
+            let id = ExprId(k as u32);
+            let node = g.node(id);
+            match node {
+                Node::Const(_) | Node::Input(_) => continue,
+                Node::Sin(a) | Node::Cos(a) => {
+                    let Some(t) = trig.iter().position(|t| t.0 == *a) else {
+                        continue;
+                    };
+                    if trig_done[t] {
+                        continue;
+                    }
+                    trig_done[t] = true;
+                    let suffix = match g.node(*a) {
+                        Node::Input(x) => format!("{}", x.index),
+                        _ => format!("_{}", a.0),
+                    };
+                    let s = format_ident!("s{}", suffix);
+                    let c = format_ident!("c{}", suffix);
+                    let x = self.operand(&bind, *a, 4);
+                    let call = self.sin_cos_call(&x);
+                    let s_pat = if trig[t].1.is_some() {
+                        quote!(#s)
+                    } else {
+                        quote!(_)
+                    };
+                    let c_pat = if trig[t].2.is_some() {
+                        quote!(#c)
+                    } else {
+                        quote!(_)
+                    };
+                    stmts.extend(quote! { let (#s_pat, #c_pat) = #call; });
+                    if let Some(sid) = trig[t].1 {
+                        bind[sid.index()] = Binding::Named(s);
+                    }
+                    if let Some(cid) = trig[t].2 {
+                        bind[cid.index()] = Binding::Named(c);
+                    }
+                }
+                _ => {
+                    let needs_let = uses[k] > 1 || matches!(node, Node::Div(..) | Node::Sqrt(_));
+                    if needs_let {
+                        let name = format_ident!("t{}", counter);
+                        counter += 1;
+                        let value = self.op(&bind, node);
+                        stmts.extend(quote! { let #name = #value; });
+                        bind[k] = Binding::Named(name);
+                    }
+                }
+            }
+        }
+
+        // Outputs, column-major.
+        let scalar = Ident::new(self.scalar.as_str(), Span::call_site());
+        let na = self.nalgebra;
+        let (rows, cols) = (self.rows, self.cols);
+        let (rows_lit, cols_lit) = (
+            proc_macro2::Literal::usize_unsuffixed(rows),
+            proc_macro2::Literal::usize_unsuffixed(cols),
+        );
+        let columns: Vec<TokenStream> = (0..cols)
+            .map(|c| {
+                let entries: Vec<TokenStream> = (0..rows)
+                    .map(|r| self.expr(&bind, self.outputs[r * cols + c]))
+                    .collect();
+                quote!([#(#entries),*])
+            })
+            .collect();
+        let ty = if cols == 1 {
+            quote!(#na::SVector::<#scalar, #rows_lit>)
+        } else {
+            quote!(#na::SMatrix::<#scalar, #rows_lit, #cols_lit>)
+        };
+        stmts.extend(quote! {
+            #ty::from_array_storage(#na::ArrayStorage([#(#columns),*]))
+        });
+        stmts
+    }
+
+    fn sin_cos_call(&self, x: &TokenStream) -> TokenStream {
+        match (self.no_std, self.scalar) {
+            (false, _) => quote!(#x.sin_cos()),
+            (true, Scalar::F64) => quote!((::libm::sin(#x), ::libm::cos(#x))),
+            (true, Scalar::F32) => quote!((::libm::sinf(#x), ::libm::cosf(#x))),
+        }
+    }
+
+    /// The tokens for node `id` where it is used: its name, or its operation inline.
+    fn expr(&self, bind: &[Binding], id: ExprId) -> TokenStream {
+        match &bind[id.index()] {
+            Binding::Named(name) => quote!(#name),
+            Binding::Inline => self.op(bind, self.graph.node(id)),
+        }
+    }
+
+    /// An operand, parenthesised when its precedence is lower than `min` requires.
+    fn operand(&self, bind: &[Binding], id: ExprId, min: u8) -> TokenStream {
+        let t = self.expr(bind, id);
+        if self.precedence(bind, id) < min {
+            quote!((#t))
+        } else {
+            t
+        }
+    }
+
+    /// 1 for sums, 2 for products and quotients, 3 for negation, 4 for atoms.
+    fn precedence(&self, bind: &[Binding], id: ExprId) -> u8 {
+        if let Binding::Named(_) = bind[id.index()] {
+            return 4;
+        }
+        match self.graph.node(id) {
+            Node::Add(..) | Node::Sub(..) => 1,
+            Node::Mul(..) | Node::Div(..) => 2,
+            Node::Neg(_) => 3,
+            Node::Const(c) if c.value() < 0.0 => 3,
+            _ => 4,
+        }
+    }
+
+    fn op(&self, bind: &[Binding], node: &Node) -> TokenStream {
+        match *node {
+            Node::Const(c) => float_tokens(c.value(), self.scalar),
+            Node::Input(x) => {
+                let name = format_ident!("in{}_{}", x.group, x.index);
+                quote!(#name)
+            }
+            Node::Neg(a) => {
+                let a = self.operand(bind, a, 4);
+                quote!(-#a)
+            }
+            Node::Add(a, b) => {
+                let (a, b) = (self.operand(bind, a, 1), self.operand(bind, b, 2));
+                quote!(#a + #b)
+            }
+            Node::Sub(a, b) => {
+                let (a, b) = (self.operand(bind, a, 1), self.operand(bind, b, 2));
+                quote!(#a - #b)
+            }
+            Node::Mul(a, b) => {
+                let (a, b) = (self.operand(bind, a, 2), self.operand(bind, b, 3));
+                quote!(#a * #b)
+            }
+            Node::Div(a, b) => {
+                let (a, b) = (self.operand(bind, a, 2), self.operand(bind, b, 3));
+                quote!(#a / #b)
+            }
+            Node::Sqrt(a) => {
+                let a = self.expr(bind, a);
+                match (self.no_std, self.scalar) {
+                    (false, _) => quote!((#a).sqrt()),
+                    (true, Scalar::F64) => quote!(::libm::sqrt(#a)),
+                    (true, Scalar::F32) => quote!(::libm::sqrtf(#a)),
+                }
+            }
+            Node::Sin(a) | Node::Cos(a) => {
+                // Only reached for a sin/cos bound by the trig pass; fall back to a call.
+                let a = self.expr(bind, a);
+                let f = if matches!(node, Node::Sin(_)) {
+                    "sin"
+                } else {
+                    "cos"
+                };
+                let f = Ident::new(f, Span::call_site());
+                quote!((#a).#f())
+            }
+        }
+    }
+}

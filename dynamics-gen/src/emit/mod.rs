@@ -1,0 +1,287 @@
+//! Emission: the expanded dynamics as Rust tokens, formatted with prettyplease.
+//!
+//! [`generate_impl`] is the one core shared by every front end (build.rs Builder, CLI,
+//! `robot!` and `#[derive(Dynamics)]`): it turns a validated robot into the `impl` block of
+//! the generated API. [`generate_file`] adds the struct, the `@generated` header and the
+//! formatting.
+
+pub mod function;
+pub mod literal;
+
+use crate::error::Error;
+use crate::expand::{self, Dynamics, Q, QD, QDD, TAU};
+use crate::options::{upper_camel, Options, Scalar};
+use dynamics_model::Robot;
+use function::{Arg, FunctionBody};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+/// The version of the generator, written into every generated header.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The result of a generation: the tokens and the expanded dynamics behind them.
+pub struct Generated {
+    /// The struct's name.
+    pub struct_name: String,
+    /// `impl Name { … }`.
+    pub impl_block: TokenStream,
+    /// `#[derive(..)] pub struct Name;` with its documentation.
+    pub struct_item: TokenStream,
+    /// The expansion (for statistics).
+    pub dynamics: Dynamics,
+}
+
+/// The robot as the generator sees it: validated, with the gravity override applied.
+pub fn prepare(robot: &Robot, options: &Options) -> Result<Robot, Error> {
+    let mut robot = robot.clone();
+    if let Some(g) = options.load.gravity {
+        robot.gravity = g;
+    }
+    robot.validate()?;
+    if robot.dof() == 0 {
+        return Err(Error::NoJoints {
+            robot: robot.name.clone(),
+        });
+    }
+    Ok(robot)
+}
+
+/// Expands `robot` and emits its `impl` block and struct item.
+pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Error> {
+    let robot = prepare(robot, options)?;
+    let struct_name = options
+        .name
+        .clone()
+        .unwrap_or_else(|| upper_camel(&robot.name));
+    let ident = syn::parse_str::<Ident>(&struct_name).map_err(|_| Error::InvalidName {
+        name: struct_name.clone(),
+    })?;
+    let nalgebra: TokenStream = syn::parse_str::<syn::Path>(&options.nalgebra_path)
+        .map(|p| quote!(#p))
+        .map_err(|_| Error::InvalidPath {
+            path: options.nalgebra_path.clone(),
+        })?;
+    let dynamics = expand::expand(&robot);
+    let n_usize = dynamics.dof;
+    let n = proc_macro2::Literal::usize_unsuffixed(n_usize);
+    let scalar = Ident::new(options.scalar.as_str(), Span::call_site());
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #n>);
+    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #n, #n>);
+    let body = |outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
+        FunctionBody {
+            graph: &dynamics.graph,
+            args,
+            outputs,
+            rows: n_usize,
+            cols,
+            scalar: options.scalar,
+            no_std: options.no_std,
+            nalgebra: &nalgebra,
+            dof: n_usize,
+        }
+        .tokens()
+    };
+    let q = Arg {
+        name: "q",
+        group: Q,
+    };
+    let qd = Arg {
+        name: "qd",
+        group: QD,
+    };
+    let qdd = Arg {
+        name: "qdd",
+        group: QDD,
+    };
+    let tau = Arg {
+        name: "tau",
+        group: TAU,
+    };
+    let mass_matrix = body(&dynamics.mass_matrix, std::slice::from_ref(&q), n_usize);
+    let coriolis = body(&dynamics.coriolis, &[q.clone(), qd.clone()], 1);
+    let gravity = body(&dynamics.gravity, std::slice::from_ref(&q), 1);
+    let inverse = body(
+        &dynamics.inverse_dynamics,
+        &[q.clone(), qd.clone(), qdd.clone()],
+        1,
+    );
+    let forward = body(&dynamics.forward_dynamics, &[q, qd, tau], 1);
+    let names: Vec<&str> = robot.joint_names();
+    let units = unit_doc(&robot);
+    let gravity_doc = format!(
+        " Gravity: ({}, {}, {}) m/s² in the base frame {{0}}, folded into the code.",
+        robot.gravity[0], robot.gravity[1], robot.gravity[2]
+    );
+    let allow = allow_attrs();
+    let impl_block = quote! {
+        #allow
+        impl #ident {
+            /// The number of joints n: the length of every joint vector.
+            pub const DOF: usize = #n;
+            /// The joint names, in the order of every vector and matrix index.
+            pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
+
+            /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
+            /// by joint types), by the composite-rigid-body algorithm.
+            #[doc = ""]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn mass_matrix(&self, q: &#vec_ty) -> #mat_ty {
+                #mass_matrix
+            }
+
+            /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`:
+            /// Newton–Euler with `q̈ = 0` and no gravity. Quadratic in `qd`.
+            #[doc = ""]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn coriolis(&self, q: &#vec_ty, qd: &#vec_ty) -> #vec_ty {
+                #coriolis
+            }
+
+            /// The gravity terms `g(q)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces that
+            /// hold the robot still (Newton–Euler with `q̇ = q̈ = 0`).
+            #[doc = ""]
+            #[doc = #gravity_doc]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn gravity(&self, q: &#vec_ty) -> #vec_ty {
+                #gravity
+            }
+
+            /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)` (recursive Newton–Euler): the joint
+            /// forces (N·m for revolute, N for prismatic joints) that produce `qdd`.
+            #[doc = ""]
+            #[doc = #gravity_doc]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn inverse_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
+                #inverse
+            }
+
+            /// Forward dynamics `q̈ = M(q)⁻¹ (τ − c(q, q̇) − g(q))`, by an unrolled LDLᵀ
+            /// factorisation of `M` (no pivoting, no explicit inverse).
+            #[doc = ""]
+            #[doc = #gravity_doc]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn forward_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
+                #forward
+            }
+        }
+    };
+    let struct_doc = struct_doc(&robot, options);
+    let struct_item = quote! {
+        #(#[doc = #struct_doc])*
+        #allow
+        #[derive(Clone, Copy, Debug, Default)]
+        pub struct #ident;
+    };
+    Ok(Generated {
+        struct_name,
+        impl_block,
+        struct_item,
+        dynamics,
+    })
+}
+
+/// The whole generated file: `@generated` header, struct, impl, formatted with prettyplease.
+/// `source` names the robot file in the header.
+pub fn generate_file(robot: &Robot, options: &Options, source: &str) -> Result<String, Error> {
+    let generated = generate_impl(robot, options)?;
+    let Generated {
+        struct_item,
+        impl_block,
+        ..
+    } = generated;
+    let file: syn::File = syn::parse2(quote!(#struct_item #impl_block))
+        .map_err(|e| Error::Internal(format!("generated code does not parse: {e}")))?;
+    let body = prettyplease::unparse(&file);
+    Ok(format!(
+        "// @generated by dynamics-gen {VERSION} from {source} (robot `{}`, {} joints, {}{}).\n// Do not edit: regenerate instead.\n\n{body}",
+        robot.name,
+        robot.dof(),
+        options.scalar.as_str(),
+        if options.no_std { ", no_std" } else { "" },
+    ))
+}
+
+fn allow_attrs() -> TokenStream {
+    quote! {
+        #[allow(
+            clippy::all,
+            clippy::pedantic,
+            clippy::nursery,
+            clippy::approx_constant,
+            clippy::excessive_precision,
+            clippy::unreadable_literal,
+            clippy::too_many_lines,
+            clippy::many_single_char_names,
+            clippy::neg_multiply,
+            clippy::suboptimal_flops,
+            unused_parens,
+            non_snake_case
+        )]
+    }
+}
+
+fn unit_doc(robot: &Robot) -> String {
+    let kinds: Vec<String> = robot
+        .joints
+        .iter()
+        .map(|j| {
+            format!(
+                "`{}` ({})",
+                j.name,
+                match j.kind {
+                    dynamics_model::JointKind::Revolute => "revolute: rad, N·m",
+                    dynamics_model::JointKind::Prismatic => "prismatic: m, N",
+                }
+            )
+        })
+        .collect();
+    format!(" Joints, in vector order: {}.", kinds.join(", "))
+}
+
+fn struct_doc(robot: &Robot, options: &Options) -> Vec<String> {
+    vec![
+        format!(
+            " Rigid-body dynamics of `{}` ({} joints), generated by dynamics-gen {VERSION}.",
+            robot.name,
+            robot.dof()
+        ),
+        String::new(),
+        format!(" Source: `{}`.", robot.source),
+        String::new(),
+        " Conventions (Modern Robotics, chapter 8): SI units (m, kg, s, rad); joint vectors in the"
+            .into(),
+        " order of [`Self::JOINT_NAMES`]; `τ = M(q) q̈ + c(q, q̇) + g(q)`, with `q` the joint".into(),
+        " angles (rad) or displacements (m) measured from the robot file's home configuration."
+            .into(),
+        format!(
+            " Scalar `{}`; straight-line code: no loops, no heap, no panics{}.",
+            options.scalar.as_str(),
+            if options.no_std {
+                ", `no_std` (libm)"
+            } else {
+                ""
+            }
+        ),
+        format!(
+            " Gravity ({}, {}, {}) m/s² in the base frame.",
+            robot.gravity[0], robot.gravity[1], robot.gravity[2]
+        ),
+    ]
+}
+
+impl Scalar {
+    /// The Rust type name as an identifier.
+    pub fn ident(self) -> Ident {
+        Ident::new(self.as_str(), Span::call_site())
+    }
+}

@@ -1,0 +1,45 @@
+//! Errors of the generator.
+
+use dynamics_model::ModelError;
+
+/// Anything that can go wrong generating code.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The robot description could not be read, parsed or validated.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The struct name is not a Rust identifier.
+    #[error(
+        "`{name}` is not a valid Rust struct name; give a name like `Ur5` with --name / .name()"
+    )]
+    InvalidName {
+        /// The name given.
+        name: String,
+    },
+    /// The nalgebra path is not a Rust path.
+    #[error(
+        "`{path}` is not a valid Rust path for nalgebra; give one like `::nalgebra` or `crate::na`"
+    )]
+    InvalidPath {
+        /// The path given.
+        path: String,
+    },
+    /// The robot has no movable joint.
+    #[error("robot `{robot}` has no movable joint: there are no dynamics to generate")]
+    NoJoints {
+        /// The robot's name.
+        robot: String,
+    },
+    /// Writing the generated file failed.
+    #[error("{path}: cannot write the generated file: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// A bug in the generator.
+    #[error("internal error in dynamics-gen (please report): {0}")]
+    Internal(String),
+}
