@@ -135,6 +135,21 @@ pub mod primitive {
         )
     }
 
+    /// Thin rectangular plate with edge `w` along x, `l` along y, normal z:
+    /// `m l²/12, m w²/12, m(w²+l²)/12`.
+    pub fn plate(mass: f64, w: f64, l: f64) -> Vector3<f64> {
+        Vector3::new(
+            mass * l * l / 12.0,
+            mass * w * w / 12.0,
+            mass * (w * w + l * l) / 12.0,
+        )
+    }
+
+    /// Thin disc of radius `r`, normal z: `m r²/4, m r²/4, m r²/2`.
+    pub fn disc(mass: f64, r: f64) -> Vector3<f64> {
+        Vector3::new(mass * r * r / 4.0, mass * r * r / 4.0, mass * r * r / 2.0)
+    }
+
     /// Volume of a box.
     pub fn cuboid_volume(w: f64, l: f64, h: f64) -> f64 {
         w * l * h

@@ -25,10 +25,39 @@ pub const ROBOTS: &[Shipped] = &[
         format: Format::Urdf,
         text: include_str!("../../robots/ur5.urdf"),
     },
+    // The UR5 of the Modern Robotics course, link frames at the centres of mass.
+    Shipped {
+        name: "mr_ur5",
+        file: "robots/mr_ur5.toml",
+        format: Format::Toml,
+        text: include_str!("../../robots/mr_ur5.toml"),
+    },
+    // The book's docstring example: its S₁ has |ω| = √2, so `load` rejects it; read it with
+    // `toml_format::from_str` (unchecked) to compare with the library.
+    Shipped {
+        name: "mr_3link",
+        file: "robots/mr_3link.toml",
+        format: Format::Toml,
+        text: include_str!("../../robots/mr_3link.toml"),
+    },
+    // The rotational pendulum of Exercise 8.4.
+    Shipped {
+        name: "pendulum",
+        file: "robots/pendulum.toml",
+        format: Format::Toml,
+        text: include_str!("../../robots/pendulum.toml"),
+    },
+    // The random 7-joint chain of mr_random7.json, in every form the TOML format offers.
+    Shipped {
+        name: "rand7",
+        file: "robots/rand7.toml",
+        format: Format::Toml,
+        text: include_str!("../../robots/rand7.toml"),
+    },
 ];
 
 /// The names of the shipped robots.
-pub const NAMES: &[&str] = &["ur5"];
+pub const NAMES: &[&str] = &["ur5", "mr_ur5", "mr_3link", "pendulum", "rand7"];
 
 /// The shipped robot called `name`.
 pub fn get(name: &str) -> Option<Shipped> {

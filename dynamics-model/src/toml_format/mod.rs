@@ -1,12 +1,179 @@
-//! The TOML robot file (being written).
+//! The TOML robot file: a serial chain written in the vocabulary of Modern Robotics,
+//! chapter 8 (`M_{i−1,i}`, `S_i`, `G_i`), for people to write and read.
+//!
+//! # The format
+//!
+//! A complete annotated example (every key; `#` starts a comment). Units are SI: m, kg, s,
+//! rad. Numbers may be written as integers (`1`) or floats (`1.0`). Unknown keys are errors,
+//! so a misspelt key is never silently ignored.
+//!
+//! ```toml
+//! name = "demo"                    # required
+//! description = "two joints"       # optional, free text
+//! gravity = [0.0, 0.0, -9.81]      # optional, in {0}, m/s²; default [0, 0, -9.81]
+//!
+//! # One [[joint]] per movable joint, root to tip. Joint i moves link i ([joint.link]).
+//! [[joint]]
+//! name = "shoulder"                # required, unique
+//! type = "revolute"                # "revolute" or "prismatic"
+//! screw = [0, 0, 1, 0, 0, 0]       # S_i = (ω, v) in {0} at the home configuration, or:
+//! # axis = [0, 0, 1]               # the axis direction in {0} (normalised for you), and
+//! # point = [0, 0, 0]              # a point on it in {0}: S_i = (ω̂, −ω̂ × q).
+//! #                                # A prismatic joint takes `axis` only: S_i = (0, ω̂).
+//! limits = [-3.14, 3.14]           # optional [lower, upper] (rad or m); absent: unlimited
+//! velocity_limit = 3.0             # optional, rad/s or m/s (needs `limits`)
+//! effort_limit = 150.0             # optional, N·m or N (needs `limits`)
+//! damping = 0.0                    # optional, N·m·s/rad; default 0
+//! friction = 0.0                   # optional, Coulomb, N·m; default 0
+//! rotor_inertia = 0.0              # optional, kg·m², motor side; default 0
+//! gear_ratio = 1.0                 # optional, motor turns per joint turn; default 1
+//!
+//! [joint.link]                     # the link moved by this joint, with its frame {i}
+//! name = "upper_arm"               # required, unique
+//! home = { xyz = [0, 0, 0.5], rpy = [0, 0, 0] }  # M_{i−1,i}: pose of {i} in {i−1} at q = 0
+//! mass = 2.0                       # kg
+//! inertia = [0.02, 0.02, 0.01, 0, 0, 0]          # [ixx, iyy, izz, ixy, ixz, iyz], kg·m²
+//! com = [0, 0, 0.1]                # optional: centre of mass in {i}; default [0, 0, 0]
+//!
+//! [[joint]]
+//! name = "elbow"
+//! type = "revolute"
+//! axis = [0, 1, 0]
+//! point = [0, 0, 0.5]
+//!
+//! [joint.link]
+//! name = "forearm"
+//! home = [[1, 0, 0, 0],            # a pose may also be a 4×4 matrix, row by row
+//!         [0, 1, 0, 0],
+//!         [0, 0, 1, 0.4],
+//!         [0, 0, 0, 1]]
+//!
+//! [[joint.link.body]]              # a link may be several bodies, added in {i}
+//! name = "tube"                    # optional, used in messages
+//! shape = { cylinder = [0.03, 0.4] }   # radius, height (along z of the body frame)
+//! density = 2700.0                 # kg/m³ (or `mass`)
+//! frame = { xyz = [0, 0, 0.2] }    # pose of the body frame {b} in {i}; default {i}
+//!
+//! [[joint.link.body]]
+//! name = "gripper"
+//! mass = 0.5
+//! inertia = [0.001, 0.001, 0.001, 0, 0, 0]
+//! frame = { xyz = [0, 0, 0.4], rpy = [0, 1.5707963267948966, 0] }
+//!
+//! [end_effector]                   # optional; default: name "end_effector", home = identity
+//! name = "tool"
+//! home = { xyz = [0, 0, 0.45] }    # M_{n,n+1}: pose of {n+1} in the last link's frame {n}
+//! ```
+//!
+//! (In TOML, `[joint.link]` and `[[joint.link.body]]` belong to the `[[joint]]` above them.)
+//!
+//! ## Poses
+//!
+//! `home`, `frame` and `end_effector.home` are poses `T = [[R, p], [0, 1]]`, written as
+//! - a table `{ xyz = [x, y, z], rpy = [roll, pitch, yaw] }` (either may be left out for
+//!   zero), with `R = Rz(yaw) Ry(pitch) Rx(roll)` as in URDF, or
+//! - a 4×4 matrix, a list of its four rows (exact, for rotations whose rpy angles would
+//!   lose digits). The loader requires a rigid transform (checked by
+//!   [`crate::validate`] to 1e-9).
+//!
+//! `home` is relative, `M_{i−1,i}`, as in the book's `Mlist`: frame {i} seen from {i−1}
+//! (link 0 is the base {0}).
+//!
+//! ## Inertia of a link
+//!
+//! Give a link (or each of its bodies) exactly one of these. Every body has a frame {b},
+//! placed in the link frame {i} by `frame` (default: {b} = {i}); the result is expressed in
+//! {i} by `G_i = [Ad_{T_bi}]ᵀ G_b [Ad_{T_bi}]` (Exercise 8.3), and a link's bodies are
+//! added (Exercise 8.2, the parallel-axis theorem in 6×6 form).
+//!
+//! 1. **Mass and rotational inertia**: `mass` and `inertia = [ixx, iyy, izz, ixy, ixz, iyz]`,
+//!    the entries of the matrix `I = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]` —
+//!    the same convention as URDF's `<inertia>`: the products are the matrix entries
+//!    (`ixy = −∫xy dm`), not the integrals. By default `I` is about the centre of mass, with
+//!    the axes of {b}; `com = [x, y, z]` is the centre of mass in {b} (default: the origin of
+//!    {b}, as the book puts {i} at the COM). With `inertia_about = "origin"`, `I` is about the
+//!    origin of {b} instead (e.g. an inertia measured about the joint); `com` then still
+//!    says where the centre of mass is. A point mass has `inertia = [0, 0, 0, 0, 0, 0]`; a
+//!    massless link is `mass = 0` alone.
+//! 2. **A primitive solid** (Exercise 8.1), homogeneous, centred at the origin of {b} with
+//!    its axes along {b}'s, with `mass` or `density` (kg/m³; the mass is density × volume):
+//!    `shape = { box = [w, l, h] }` (edges along x, y, z), `{ cylinder = [r, h] }` (axis z),
+//!    `{ sphere = r }`, `{ ellipsoid = [a, b, c] }` (semi-axes along x, y, z), and the thin
+//!    `{ plate = [w, l] }` (in the xy plane) and `{ disc = r }` (normal z), which take a
+//!    `mass` only. Place the solid with `frame`; `com` and `inertia` are not allowed.
+//! 3. **The 6×6 spatial inertia** in {b}: `spatial_inertia = [[…6…], …6 rows…]`,
+//!    `[[I_b, m[c]], [m[c]ᵀ, m·1₃]]` about the origin of {b} (any frame, Exercise 8.3).
+//! 4. **Several bodies**: `[[joint.link.body]]` tables, each with one of 1–3, its own
+//!    `frame` and an optional `name`; the link itself then has no inertial keys.
+//!
+//! # Errors
+//!
+//! Malformed TOML, a wrong type, a missing required key or an unknown key is a
+//! [`ModelError::Parse`] with the 1-based line and column. Everything else — wrong array
+//! lengths, a mass without inertia, both `mass` and `density`, a negative mass, an inertia
+//! that no rigid body has, a non-rigid `frame`, … — is a [`ModelError::Invalid`] naming the
+//! file, the link or joint, the field and the fix; all such problems are reported at once.
+//!
+//! [`from_str`] checks the file and builds the robot exactly as written (a screw axis with
+//! `|ω| ≠ 1` is kept, as the book's functions accept it); [`crate::load`] then validates
+//! the robot ([`crate::validate`]: unit screw axes, rigid homes, physical inertias).
+
+// The helpers return `Result<_, Invalid>` on a cold path whose errors are collected into a
+// `Vec<Invalid>`; boxing them would only add noise.
+#![allow(clippy::result_large_err)]
+
+mod body;
+mod convert;
+mod pose;
+mod schema;
 
 use crate::error::ModelError;
 use crate::robot::Robot;
 
-/// Parses a TOML robot file; `file` names it in errors.
-pub fn from_str(_text: &str, file: &str) -> Result<Robot, ModelError> {
-    Err(ModelError::Io {
-        file: file.into(),
-        message: "the TOML loader is not written yet".into(),
-    })
+/// Parses a TOML robot file and builds the robot as written; `file` names it in errors.
+///
+/// Schema-level problems are errors; the robot itself is not validated here (see the
+/// module docs; [`crate::load::from_str`] does both).
+pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
+    let spec: schema::RobotFile = toml::from_str(text).map_err(|e| {
+        let (line, column) = e
+            .span()
+            .map(|span| line_column(text, span.start))
+            .unwrap_or((0, 0));
+        ModelError::Parse {
+            file: file.to_string(),
+            line,
+            column,
+            message: e.message().trim().to_string(),
+        }
+    })?;
+    convert::build(spec, file).map_err(|errors| ModelError::Invalid(errors).in_file(file))
+}
+
+/// The 1-based line and column (in characters) of byte `offset` in `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let column = before[line_start..].chars().count() + 1;
+    (line, column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_column_counts_from_one() {
+        let text = "a = 1\nbé = 2\n";
+        assert_eq!(line_column(text, 0), (1, 1));
+        assert_eq!(line_column(text, 6), (2, 1));
+        // "bé" is 3 bytes; the space after it is the 3rd character of line 2.
+        assert_eq!(line_column(text, 9), (2, 3));
+        assert_eq!(line_column(text, 1000), (3, 1));
+    }
 }

@@ -1,0 +1,301 @@
+//! From the parsed file ([`super::schema`]) to a [`Robot`]: screw axes, home frames, joint
+//! properties and link inertias, with every schema-level problem collected.
+//!
+//! Screw axis of joint i in {0}: given as `screw = S_i`, or from `axis = ω` (normalised to
+//! `ω̂`) and a point `q` on it: `S_i = (ω̂, −ω̂ × q)` (revolute), `S_i = (0, ω̂)` (prismatic).
+
+use super::body::body_inertia;
+use super::pose::{array, pose, vector3};
+use super::schema::{JointSpec, KindSpec, RobotFile};
+use crate::error::{Invalid, Subject};
+use crate::inertia::SpatialInertia;
+use crate::lie::twist;
+use crate::robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
+use nalgebra::{Matrix4, Vector3, Vector6};
+use std::collections::HashMap;
+
+/// Builds the robot; `Err` holds every problem found (not yet attributed to a file).
+pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> {
+    let mut errors = Vec::new();
+    if spec.joints.is_empty() {
+        errors.push(Invalid::new(
+            Subject::Robot,
+            "joint",
+            "the robot has no movable joint",
+            "add at least one `[[joint]]` table with its `[joint.link]`",
+        ));
+    }
+    let gravity = match &spec.gravity {
+        None => Vector3::from(DEFAULT_GRAVITY),
+        Some(g) => vector3(&Subject::Robot, "gravity", g).unwrap_or_else(|e| {
+            errors.push(e);
+            Vector3::from(DEFAULT_GRAVITY)
+        }),
+    };
+    let mut joint_names: HashMap<&str, usize> = HashMap::new();
+    let mut link_names: HashMap<&str, usize> = HashMap::new();
+    let mut joints = Vec::with_capacity(spec.joints.len());
+    let mut links = Vec::with_capacity(spec.joints.len());
+    for (i, j) in spec.joints.iter().enumerate() {
+        let joint_subject = Subject::Joint {
+            index: Some(i),
+            name: j.name.clone(),
+        };
+        let link_subject = Subject::Link {
+            index: Some(i),
+            name: j.link.name.clone(),
+        };
+        if let Some(first) = joint_names.insert(&j.name, i) {
+            errors.push(Invalid::new(
+                joint_subject.clone(),
+                "name",
+                format!(
+                    "joints {} and {} are both called `{}`",
+                    first + 1,
+                    i + 1,
+                    j.name
+                ),
+                "give every joint its own name",
+            ));
+        }
+        if let Some(first) = link_names.insert(&j.link.name, i) {
+            errors.push(Invalid::new(
+                link_subject.clone(),
+                "name",
+                format!(
+                    "links {} and {} are both called `{}`",
+                    first + 1,
+                    i + 1,
+                    j.link.name
+                ),
+                "give every link its own name",
+            ));
+        }
+        if let Some(joint) = joint(&joint_subject, j, &mut errors) {
+            joints.push(joint);
+        }
+        let home = pose(&link_subject, "home", &j.link.home).unwrap_or_else(|e| {
+            errors.push(e);
+            Matrix4::identity()
+        });
+        if let Some(inertia) = link_inertia(&link_subject, j, &mut errors) {
+            links.push(Link {
+                name: j.link.name.clone(),
+                home,
+                inertia,
+            });
+        }
+    }
+    let end_effector = match &spec.end_effector {
+        None => EndEffector {
+            name: "end_effector".into(),
+            home: Matrix4::identity(),
+        },
+        Some(ee) => EndEffector {
+            name: ee.name.clone().unwrap_or_else(|| "end_effector".into()),
+            home: match &ee.home {
+                None => Matrix4::identity(),
+                Some(v) => pose(&Subject::EndEffector, "home", v).unwrap_or_else(|e| {
+                    errors.push(e);
+                    Matrix4::identity()
+                }),
+            },
+        },
+    };
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(Robot {
+        name: spec.name,
+        source: file.to_string(),
+        joints,
+        links,
+        end_effector,
+        gravity,
+    })
+}
+
+/// Joint i: kind, screw axis, limits and drive properties.
+fn joint(subject: &Subject, j: &JointSpec, errors: &mut Vec<Invalid>) -> Option<Joint> {
+    let n_errors = errors.len();
+    let kind = match j.kind {
+        KindSpec::Revolute => JointKind::Revolute,
+        KindSpec::Prismatic => JointKind::Prismatic,
+    };
+    let screw = screw(subject, kind, j).map_err(|e| errors.push(e)).ok();
+    let limits = match &j.limits {
+        Some(l) => match array::<2>(subject, "limits", l) {
+            Ok([lower, upper]) => Some(JointLimits {
+                lower,
+                upper,
+                velocity: j.velocity_limit,
+                effort: j.effort_limit,
+            }),
+            Err(e) => {
+                errors.push(e);
+                None
+            }
+        },
+        None => {
+            for (key, given) in [
+                ("velocity_limit", j.velocity_limit.is_some()),
+                ("effort_limit", j.effort_limit.is_some()),
+            ] {
+                if given {
+                    errors.push(Invalid::new(
+                        subject.clone(),
+                        key,
+                        format!("`{key}` is given for a joint without position `limits`"),
+                        "add `limits = [lower, upper]` (the model keeps velocity and effort limits with the position limits), or remove the key",
+                    ));
+                }
+            }
+            None
+        }
+    };
+    for (key, value) in [
+        ("velocity_limit", j.velocity_limit),
+        ("effort_limit", j.effort_limit),
+    ] {
+        if let Some(x) = value {
+            if !(x.is_finite() && x > 0.0) {
+                errors.push(Invalid::new(
+                    subject.clone(),
+                    key,
+                    format!("must be a positive number, found {x}"),
+                    "give a limit > 0, or remove the key",
+                ));
+            }
+        }
+    }
+    let mut nonnegative = |key: &str, value: Option<f64>| -> f64 {
+        let x = value.unwrap_or(0.0);
+        if !(x.is_finite() && x >= 0.0) {
+            errors.push(Invalid::new(
+                subject.clone(),
+                key,
+                format!("must be finite and ≥ 0, found {x}"),
+                "give a value ≥ 0 (or remove the key for 0)",
+            ));
+        }
+        x
+    };
+    let damping = nonnegative("damping", j.damping);
+    let friction = nonnegative("friction", j.friction);
+    let rotor_inertia = nonnegative("rotor_inertia", j.rotor_inertia);
+    let gear_ratio = j.gear_ratio.unwrap_or(1.0);
+    if !(gear_ratio.is_finite() && gear_ratio != 0.0) {
+        errors.push(Invalid::new(
+            subject.clone(),
+            "gear_ratio",
+            format!("must be finite and non-zero, found {gear_ratio}"),
+            "give the motor turns per joint turn (1 for a direct drive)",
+        ));
+    }
+    let screw = screw?;
+    if errors.len() > n_errors {
+        return None;
+    }
+    Some(Joint {
+        name: j.name.clone(),
+        kind,
+        screw,
+        limits,
+        damping,
+        friction,
+        rotor_inertia,
+        gear_ratio,
+    })
+}
+
+/// `S_i` from `screw`, or from `axis` (and `point` for a revolute joint).
+fn screw(subject: &Subject, kind: JointKind, j: &JointSpec) -> Result<Vector6<f64>, Invalid> {
+    let fail = |field: &str, problem: String, fix: &str| {
+        Err(Invalid::new(subject.clone(), field, problem, fix))
+    };
+    match (&j.screw, &j.axis) {
+        (Some(_), Some(_)) => fail(
+            "axis",
+            "both `screw` and `axis` are given".into(),
+            "give either `screw = [ωx, ωy, ωz, vx, vy, vz]` or `axis` (with `point` for a revolute joint)",
+        ),
+        (None, None) => fail(
+            "screw",
+            "the joint has neither `screw` nor `axis`".into(),
+            "give `screw = [ωx, ωy, ωz, vx, vy, vz]` in {0}, or `axis = [x, y, z]` (with `point = [x, y, z]` on it for a revolute joint)",
+        ),
+        (Some(s), None) => {
+            if j.point.is_some() {
+                return fail(
+                    "point",
+                    "`point` is given with `screw`".into(),
+                    "`point` goes with `axis`; a screw axis already holds its location in v = −ω × q",
+                );
+            }
+            array::<6>(subject, "screw", s).map(Vector6::from)
+        }
+        (None, Some(a)) => {
+            let w = vector3(subject, "axis", a)?;
+            let norm = w.norm();
+            if !(norm.is_finite() && norm > 0.0) {
+                return fail(
+                    "axis",
+                    format!("the axis {a:?} has no direction (length {norm})"),
+                    "give a non-zero, finite direction",
+                );
+            }
+            let w = w / norm;
+            match (kind, &j.point) {
+                (JointKind::Revolute, Some(p)) => {
+                    let q = vector3(subject, "point", p)?;
+                    Ok(twist(&w, &(-w.cross(&q))))
+                }
+                (JointKind::Revolute, None) => fail(
+                    "point",
+                    "a revolute `axis` is given without a `point` on it".into(),
+                    "add `point = [x, y, z]`, a point of the axis in {0} at the home configuration",
+                ),
+                (JointKind::Prismatic, Some(_)) => fail(
+                    "point",
+                    "a prismatic joint has no axis location, but `point` is given".into(),
+                    "remove `point`: a prismatic joint's screw axis is (0, axis)",
+                ),
+                (JointKind::Prismatic, None) => Ok(twist(&Vector3::zeros(), &w)),
+            }
+        }
+    }
+}
+
+/// `G_i` of the link moved by joint i: its own keys, or the sum of its bodies.
+fn link_inertia(
+    subject: &Subject,
+    j: &JointSpec,
+    errors: &mut Vec<Invalid>,
+) -> Option<SpatialInertia> {
+    let own = j.link.own_body();
+    if j.link.bodies.is_empty() {
+        return body_inertia(subject, "", &own, errors);
+    }
+    if !own.is_empty() {
+        errors.push(Invalid::new(
+            subject.clone(),
+            "body",
+            "the link has both its own inertial keys (mass, inertia, shape, …) and `[[joint.link.body]]` tables",
+            "move the link's own mass and inertia into one more `[[joint.link.body]]`, or remove the bodies",
+        ));
+        return None;
+    }
+    let mut total = Some(SpatialInertia::zero());
+    for (k, b) in j.link.bodies.iter().enumerate() {
+        let prefix = match &b.name {
+            Some(name) => format!("body[{name}]."),
+            None => format!("body[{k}]."),
+        };
+        let g = body_inertia(subject, &prefix, b, errors);
+        total = match (total, g) {
+            (Some(t), Some(g)) => Some(t + g),
+            _ => None,
+        };
+    }
+    total
+}
