@@ -30,6 +30,7 @@
 pub mod error;
 pub mod inertia;
 pub mod lie;
+pub mod random;
 pub mod robot;
 pub mod validate;
 
