@@ -32,6 +32,7 @@ mod convert;
 pub mod origin;
 mod parse;
 mod tree;
+mod xml_scan;
 
 use crate::error::{Invalid, ModelError, Subject};
 use crate::load::LoadOptions;

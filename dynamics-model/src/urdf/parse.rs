@@ -7,6 +7,7 @@
 //! text for the value or element the message quotes; when nothing is found, line and column
 //! are 0 and the message stands alone.
 
+use super::xml_scan;
 use crate::error::ModelError;
 
 /// Parses `text` with `urdf_rs::read_from_string`; errors name `file` and, where they can
@@ -18,21 +19,25 @@ pub fn read(text: &str, file: &str) -> Result<urdf_rs::Robot, ModelError> {
         column,
         message,
     };
-    if text.trim().is_empty() {
-        return Err(parse_error(
-            1,
-            1,
-            "the file is empty; a URDF file holds one <robot> element".into(),
-        ));
-    }
-    if !has_robot_root(text) {
-        let (line, column) = first_element(text).unwrap_or((1, 1));
+    let root = xml_scan::scan(text).map_err(|(offset, message)| {
+        let (line, column) = line_column(text, offset);
+        parse_error(line, column, format!("malformed XML: {message}"))
+    })?;
+    if root.name != "robot" {
+        let (line, column) = line_column(text, root.offset);
         return Err(parse_error(
             line,
             column,
-            "the root element is not <robot>: this is not a URDF file".into(),
+            format!(
+                "the root element is <{}>, not <robot>: this is not a URDF file",
+                root.name
+            ),
         ));
     }
+    xml_scan::check_urdf(&root).map_err(|(offset, message)| {
+        let (line, column) = line_column(text, offset);
+        parse_error(line, column, message)
+    })?;
     // urdf-rs and its XML back ends are not known to panic on malformed input, but they were
     // not written with hostile input in mind; a panic must not take down a build script or
     // the CLI, so it is caught here as a last resort and reported as a parse error.
@@ -53,43 +58,6 @@ pub fn read(text: &str, file: &str) -> Result<urdf_rs::Robot, ModelError> {
     }
 }
 
-/// Whether the first element of `text` (after the prolog and comments) is `<robot`.
-fn has_robot_root(text: &str) -> bool {
-    match first_element(text) {
-        Some((line, column)) => {
-            let offset = offset_of(text, line, column);
-            let rest = &text[offset..];
-            rest.starts_with("<robot")
-                && rest[6..]
-                    .chars()
-                    .next()
-                    .is_some_and(|c| c.is_whitespace() || c == '>' || c == '/')
-        }
-        // No element at all: let the XML parser say what is wrong.
-        None => true,
-    }
-}
-
-/// The 1-based line and column of the first start tag (skipping `<?…?>`, `<!…>`).
-fn first_element(text: &str) -> Option<(usize, usize)> {
-    let mut rest = text;
-    let mut offset = 0;
-    loop {
-        let i = rest.find('<')?;
-        let after = &rest[i + 1..];
-        let skip = if after.starts_with("!--") {
-            after.find("-->").map(|e| e + 3)
-        } else if after.starts_with('?') || after.starts_with('!') {
-            after.find('>').map(|e| e + 1)
-        } else {
-            return Some(line_column(text, offset + i));
-        };
-        let skip = skip?;
-        offset += i + 1 + skip;
-        rest = &text[offset..];
-    }
-}
-
 /// The 1-based (line, column) of byte `offset` in `text` (column in characters).
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset];
@@ -98,22 +66,8 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, before[line_start..].chars().count() + 1)
 }
 
-/// The byte offset of the 1-based (line, column) found by [`line_column`].
-fn offset_of(text: &str, line: usize, column: usize) -> usize {
-    let line_start = text
-        .split_inclusive('\n')
-        .take(line.saturating_sub(1))
-        .map(str::len)
-        .sum::<usize>();
-    let in_line = text[line_start..]
-        .char_indices()
-        .nth(column.saturating_sub(1))
-        .map_or(text.len() - line_start, |(i, _)| i);
-    line_start + in_line
-}
-
 /// The position an error message points at: `Line: L, Column: C` from the XML parser, else
-/// the first occurrence in `text` of a value the message quotes (`[..]`, `(..)` or
+/// the only occurrence in `text` of a value the message quotes (`[..]`, `(..)` or
 /// backticks) or of the element it names.
 fn position(text: &str, message: &str) -> Option<(usize, usize)> {
     if let Some(p) = xml_parser_position(message) {
@@ -130,7 +84,8 @@ fn position(text: &str, message: &str) -> Option<(usize, usize)> {
                 format!("'{quoted}'"),
                 format!("<{quoted}"),
             ] {
-                if let Some(i) = text.find(&needle) {
+                // Only a value found once says where the problem is.
+                if let (Some(i), 1) = (text.find(&needle), text.matches(&needle).count()) {
                     return Some(line_column(text, i));
                 }
             }
@@ -181,19 +136,17 @@ mod tests {
 
     #[test]
     fn positions_are_one_based() {
-        let text = "ab\ncd<x>";
-        assert_eq!(line_column(text, 5), (2, 3));
-        assert_eq!(offset_of(text, 2, 3), 5);
-        assert_eq!(
-            first_element("<?xml version='1.0'?>\n<!-- c -->\n <robot/>"),
-            Some((3, 2))
-        );
+        assert_eq!(line_column("ab\ncd<x>", 5), (2, 3));
+        assert_eq!(line_column("é<x>", 2), (1, 2));
     }
 
     #[test]
     fn root_must_be_robot() {
-        assert!(has_robot_root("<?xml version=\"1.0\"?><robot name=\"r\"/>"));
-        assert!(!has_robot_root("<robots/>"));
-        assert!(!has_robot_root("<sdf/>"));
+        let e = read("<?xml version=\"1.0\"?>\n<sdf/>", "f.sdf").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("f.sdf:2:1: the root element is <sdf>"),
+            "{e}"
+        );
     }
 }
