@@ -124,6 +124,7 @@
 
 mod body;
 mod convert;
+mod locate;
 mod pose;
 mod schema;
 
@@ -140,11 +141,16 @@ pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
             .span()
             .map(|span| line_column(text, span.start))
             .unwrap_or((0, 0));
+        let message = e.message().trim().to_string();
+        let message = match e.span().and_then(|span| locate::context(text, span.start)) {
+            Some(context) => format!("{message} (in {context})"),
+            None => message,
+        };
         ModelError::Parse {
             file: file.to_string(),
             line,
             column,
-            message: e.message().trim().to_string(),
+            message,
         }
     })?;
     convert::build(spec, file).map_err(|errors| ModelError::Invalid(errors).in_file(file))
