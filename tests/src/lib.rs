@@ -1,1 +1,180 @@
-//! Test helpers.
+//! Shared harness of the comparison tests: every robot generated and compiled by this
+//! crate's build.rs, behind one object-safe interface, and the reference model it came from.
+
+use dynamics_model::random::{random_chain, ChainSpec};
+use dynamics_model::{LoadOptions, Robot};
+use nalgebra::{DMatrix, DVector};
+
+/// Where a compiled case's robot comes from (so the tests can load the same model).
+#[derive(Clone, Copy, Debug)]
+pub enum Spec {
+    /// A shipped robot by name.
+    Shipped(&'static str),
+    /// `tests/data/robots/<name>.urdf` with the given tip link.
+    Urdf(&'static str, &'static str),
+    /// `random_chain(seed, dof)` with 30 % prismatic joints.
+    Random(u64, usize),
+}
+
+impl Spec {
+    /// Loads the robot model.
+    pub fn robot(&self) -> Robot {
+        match *self {
+            Spec::Shipped(name) => dynamics_model::load(name, &LoadOptions::default())
+                .unwrap_or_else(|e| panic!("{name}: {e}")),
+            Spec::Urdf(name, tip) => {
+                let path = data_dir().join(format!("robots/{name}.urdf"));
+                let options = LoadOptions {
+                    tip: Some(tip.to_string()),
+                    ..Default::default()
+                };
+                dynamics_model::load_file(&path, &options).unwrap_or_else(|e| panic!("{e}"))
+            }
+            Spec::Random(seed, dof) => random_chain(
+                seed,
+                ChainSpec {
+                    dof,
+                    prismatic: 0.3,
+                },
+            ),
+        }
+    }
+}
+
+/// `tests/data` of this repository.
+pub fn data_dir() -> std::path::PathBuf {
+    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data")
+}
+
+/// A generated robot, evaluated through f64 slices whatever its scalar type.
+pub trait GeneratedDynamics: Sync {
+    /// n.
+    fn dof(&self) -> usize;
+    /// The joint names.
+    fn joint_names(&self) -> Vec<&'static str>;
+    /// `M(q)`.
+    fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `c(q, q̇)`.
+    fn coriolis(&self, q: &[f64], qd: &[f64]) -> DVector<f64>;
+    /// `g(q)`.
+    fn gravity(&self, q: &[f64]) -> DVector<f64>;
+    /// `τ(q, q̇, q̈)`.
+    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64>;
+    /// `q̈(q, q̇, τ)`.
+    fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> DVector<f64>;
+}
+
+/// One compiled robot.
+pub struct Case {
+    /// Its module name.
+    pub module: &'static str,
+    /// Its model.
+    pub spec: Spec,
+    /// `"f64"` or `"f32"`.
+    pub scalar: &'static str,
+    /// The generated code.
+    pub imp: &'static dyn GeneratedDynamics,
+}
+
+macro_rules! adapter {
+    ($m:ident, $n:literal, $s:ty) => {
+        impl $crate::GeneratedDynamics for $m::Robot {
+            fn dof(&self) -> usize {
+                $m::Robot::DOF
+            }
+            fn joint_names(&self) -> Vec<&'static str> {
+                $m::Robot::JOINT_NAMES.to_vec()
+            }
+            fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
+                let m = $m::Robot::mass_matrix(self, &to_s::<$s, $n>(q));
+                DMatrix::from_fn($n, $n, |i, j| m[(i, j)] as f64)
+            }
+            fn coriolis(&self, q: &[f64], qd: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::coriolis(
+                    self,
+                    &to_s::<$s, $n>(q),
+                    &to_s::<$s, $n>(qd),
+                ))
+            }
+            fn gravity(&self, q: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::gravity(self, &to_s::<$s, $n>(q)))
+            }
+            fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::inverse_dynamics(
+                    self,
+                    &to_s::<$s, $n>(q),
+                    &to_s::<$s, $n>(qd),
+                    &to_s::<$s, $n>(qdd),
+                ))
+            }
+            fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::forward_dynamics(
+                    self,
+                    &to_s::<$s, $n>(q),
+                    &to_s::<$s, $n>(qd),
+                    &to_s::<$s, $n>(tau),
+                ))
+            }
+        }
+    };
+}
+
+/// A scalar type of generated code.
+pub trait Real: Copy + 'static {
+    /// From f64 (rounded for f32).
+    fn from_f64(x: f64) -> Self;
+    /// To f64 (exact).
+    fn to_f64(self) -> f64;
+}
+
+impl Real for f64 {
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl Real for f32 {
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+}
+
+fn to_s<T: Real + nalgebra::Scalar, const N: usize>(x: &[f64]) -> nalgebra::SVector<T, N> {
+    nalgebra::SVector::<T, N>::from_fn(|i, _| T::from_f64(x[i]))
+}
+
+fn to_d<T: Real + nalgebra::Scalar, const N: usize>(x: nalgebra::SVector<T, N>) -> DVector<f64> {
+    DVector::from_fn(N, |i, _| x[i].to_f64())
+}
+
+/// The generated modules and [`CASES`].
+pub mod generated {
+    #![allow(missing_docs)]
+    use super::{to_d, to_s};
+    use super::{Case, Spec};
+    use nalgebra::{DMatrix, DVector};
+    include!(concat!(env!("OUT_DIR"), "/cases.rs"));
+}
+
+pub use generated::CASES;
+
+/// ‖x − y‖∞ / (‖y‖∞ + atol/rtol): the relative error measure of the acceptance criteria.
+pub fn rel_err(x: &[f64], y: &[f64], atol: f64) -> f64 {
+    assert_eq!(x.len(), y.len(), "sizes differ");
+    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = x
+        .iter()
+        .zip(y)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    if err == 0.0 {
+        0.0
+    } else {
+        err / (scale + atol)
+    }
+}

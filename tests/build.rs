@@ -1,0 +1,138 @@
+//! Generates the dynamics of every robot the comparison tests compile: the shipped robots,
+//! the reference URDFs, and seeded random chains (f64 and f32), all through one build.rs.
+
+use dynamics_gen::{Options, Scalar};
+use dynamics_model::random::{random_chain, ChainSpec};
+use dynamics_model::{load, LoadOptions, Robot};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+struct Case {
+    module: String,
+    spec: String,
+    robot: Robot,
+    scalar: Scalar,
+    no_std: bool,
+}
+
+/// The random chains compiled as Rust: n = 1..12, every third joint prismatic on average.
+pub const RANDOM: &[(u64, usize)] = &[
+    (101, 1),
+    (102, 2),
+    (103, 3),
+    (104, 4),
+    (105, 5),
+    (106, 6),
+    (107, 7),
+    (108, 8),
+    (109, 9),
+    (110, 10),
+    (111, 11),
+    (112, 12),
+    (113, 3),
+    (114, 6),
+    (115, 7),
+    (116, 12),
+];
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets it"));
+    let data = manifest.join("data/robots");
+    println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=data/robots");
+    let mut cases = Vec::new();
+    for name in ["ur5", "mr_ur5", "pendulum", "rand7"] {
+        let robot = load(name, &LoadOptions::default()).expect("shipped robot loads");
+        cases.push(Case {
+            module: format!("shipped_{name}"),
+            spec: format!("Spec::Shipped({name:?})"),
+            robot,
+            scalar: Scalar::F64,
+            no_std: false,
+        });
+    }
+    for (name, tip) in [
+        ("ur5", "tool0"),
+        ("panda", "panda_hand_tcp"),
+        ("double_pendulum", "link2"),
+        ("rand7", "ee_link"),
+        ("mr_ur5", "ee_link"),
+    ] {
+        let path = data.join(format!("{name}.urdf"));
+        let options = LoadOptions {
+            tip: Some(tip.to_string()),
+            ..Default::default()
+        };
+        let robot = dynamics_model::load_file(&path, &options)
+            .or_else(|_| dynamics_model::load_file(&path, &LoadOptions::default()))
+            .expect("reference URDF loads");
+        cases.push(Case {
+            module: format!("urdf_{name}"),
+            spec: format!("Spec::Urdf({name:?}, {:?})", robot.end_effector.name),
+            robot,
+            scalar: Scalar::F64,
+            no_std: false,
+        });
+    }
+    for (k, &(seed, dof)) in RANDOM.iter().enumerate() {
+        let spec = ChainSpec {
+            dof,
+            prismatic: 0.3,
+        };
+        let robot = random_chain(seed, spec);
+        let scalar = if k % 2 == 0 { Scalar::F64 } else { Scalar::F32 };
+        cases.push(Case {
+            module: format!("random_{seed}_{}", scalar.as_str()),
+            spec: format!("Spec::Random({seed}, {dof})"),
+            robot,
+            scalar,
+            no_std: k % 4 == 1,
+        });
+    }
+    // The same robots in f32 and no_std as well.
+    for name in ["ur5", "pendulum"] {
+        let robot = load(name, &LoadOptions::default()).expect("shipped robot loads");
+        cases.push(Case {
+            module: format!("shipped_{name}_f32_no_std"),
+            spec: format!("Spec::Shipped({name:?})"),
+            robot,
+            scalar: Scalar::F32,
+            no_std: true,
+        });
+    }
+
+    let mut registry = String::new();
+    let mut modules = String::new();
+    for case in &cases {
+        let options = Options {
+            name: Some("Robot".into()),
+            scalar: case.scalar,
+            no_std: case.no_std,
+            ..Default::default()
+        };
+        let code = dynamics_gen::generate_file(&case.robot, &options, &case.spec)
+            .unwrap_or_else(|e| panic!("{}: {e}", case.module));
+        let file = format!("{}.rs", case.module);
+        std::fs::write(out.join(&file), code).expect("OUT_DIR is writable");
+        let n = case.robot.dof();
+        let s = case.scalar.as_str();
+        writeln!(
+            modules,
+            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {n}, {s});",
+            m = case.module
+        )
+        .ok();
+        writeln!(
+            registry,
+            "    Case {{ module: {m:?}, spec: {spec}, scalar: {s:?}, imp: &{m}::Robot }},",
+            m = case.module,
+            spec = case.spec,
+        )
+        .ok();
+    }
+    let all = format!(
+        "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n"
+    );
+    std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
+}
