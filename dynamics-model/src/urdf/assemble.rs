@@ -30,15 +30,15 @@ pub fn robot(
     links: &[LinkModel],
     chain: &[usize],
     tip: Option<usize>,
-) -> Result<Robot, Invalid> {
+) -> Result<Robot, Vec<Invalid>> {
     let n = chain.len();
     let Some(&last) = chain.last() else {
-        return Err(Invalid::new(
+        return Err(vec![Invalid::new(
             Subject::Robot,
             "joint",
             "the robot has no movable joint (revolute, continuous or prismatic)",
             "a robot to generate dynamics for needs at least one movable joint; check the joint types and `--lock`",
-        ));
+        )]);
     };
     let mut body_of_joint = vec![0usize; joints.len()];
     for (i, &j) in chain.iter().enumerate() {
@@ -81,7 +81,7 @@ pub fn robot(
             0 => "it is on the fixed base, which no joint moves".to_string(),
             b => format!("it is moved by joint `{}`", urdf.joints[chain[b - 1]].name),
         };
-        return Err(Invalid::new(
+        return Err(vec![Invalid::new(
             Subject::EndEffector,
             "tip",
             format!(
@@ -91,7 +91,7 @@ pub fn robot(
                 urdf.joints[last].name
             ),
             "choose a tip link attached by fixed joints to the last movable joint's child link, or lock the joints after it",
-        ));
+        )]);
     }
     let mut m0i = Matrix4::identity();
     let mut out_joints = Vec::with_capacity(n);

@@ -90,6 +90,6 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
     }
     let movable: Vec<bool> = joints.iter().map(|j| j.kind.is_some()).collect();
     let names: Vec<String> = urdf.joints.iter().map(|j| j.name.clone()).collect();
-    let chain = tree.chain(&movable, &names, tip).map_err(|e| vec![e])?;
-    assemble::robot(urdf, &tree, &joints, &links, &chain, tip).map_err(|e| vec![e])
+    let chain = tree.chain(&movable, &names, tip)?;
+    assemble::robot(urdf, &tree, &joints, &links, &chain, tip)
 }

@@ -58,6 +58,7 @@ mod tests {
     use core::f64::consts::{FRAC_PI_2, PI};
 
     #[test]
+    #[allow(clippy::approx_constant)] // the decimals UR5 files write for π/2 and π
     fn right_angles_are_exact() {
         assert_eq!(sin_cos_snapped(FRAC_PI_2), (1.0, 0.0));
         assert_eq!(sin_cos_snapped(1.57079632679), (1.0, 0.0));

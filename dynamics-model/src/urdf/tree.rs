@@ -64,21 +64,21 @@ impl Tree {
         let mut parent_joint: Vec<Option<usize>> = vec![None; n_links];
         let mut child_joints = vec![Vec::new(); n_links];
         for (ji, j) in robot.joints.iter().enumerate() {
-            let find = |field: &str, name: &str| -> Result<usize, Invalid> {
-                index.get(name).copied().ok_or_else(|| {
-                    Invalid::new(
+            let mut find = |field: &str, name: &str| -> Option<usize> {
+                let found = index.get(name).copied();
+                if found.is_none() {
+                    errors.push(Invalid::new(
                         joint_subject(&j.name),
                         field,
                         format!("refers to link `{name}`, which the file does not define"),
                         format!("add <link name=\"{name}\"/> or correct the link name"),
-                    )
-                })
+                    ));
+                }
+                found
             };
             let (p, c) = match (find("parent", &j.parent.link), find("child", &j.child.link)) {
-                (Ok(p), Ok(c)) => (p, c),
-                (p, c) => {
-                    errors.extend(p.err());
-                    errors.extend(c.err());
+                (Some(p), Some(c)) => (p, c),
+                _ => {
                     ends.push((usize::MAX, usize::MAX));
                     continue;
                 }
@@ -219,7 +219,7 @@ impl Tree {
         movable: &[bool],
         joint_names: &[String],
         keep_link: Option<usize>,
-    ) -> Result<Vec<usize>, Invalid> {
+    ) -> Result<Vec<usize>, Vec<Invalid>> {
         let mut chain = Vec::new();
         let mut link = self.root;
         loop {
@@ -236,7 +236,14 @@ impl Tree {
                     }
                     link = self.ends[*j].1;
                 }
-                _ => return Err(self.branch_error(link, &branches, joint_names, keep_link)),
+                _ => {
+                    return Err(vec![self.branch_error(
+                        link,
+                        &branches,
+                        joint_names,
+                        keep_link,
+                    )])
+                }
             }
         }
     }
