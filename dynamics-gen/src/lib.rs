@@ -6,12 +6,15 @@
 //! (tokens, prettyplease, `@generated` header), with the front ends on top: the build.rs
 //! [`Builder`], the `dynamics-gen` CLI and the `dynamics-macros` proc-macros.
 
+pub mod builder;
 pub mod emit;
 pub mod error;
 pub mod expand;
 pub mod expr;
 pub mod options;
+pub mod stats;
 
+pub use builder::{compile_robot, Builder};
 pub use dynamics_model;
 pub use emit::{generate_file, generate_impl, Generated};
 pub use error::Error;

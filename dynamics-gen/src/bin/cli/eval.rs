@@ -1,0 +1,122 @@
+//! `eval`: the reference dynamics (dynamics-reference) on states read as JSON lines.
+
+use super::args::ModelArgs;
+use dynamics_gen::dynamics_model::Robot;
+use nalgebra::{DMatrix, Matrix4, Vector6};
+use serde::{Deserialize, Serialize};
+use std::io::{BufRead, Write};
+
+/// One input line. Unknown keys are an error, so a typo is not silently a zero vector.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct State {
+    q: Vec<f64>,
+    #[serde(default)]
+    qd: Option<Vec<f64>>,
+    #[serde(default)]
+    qdd: Option<Vec<f64>>,
+    #[serde(default)]
+    tau: Option<Vec<f64>>,
+    #[serde(default)]
+    f_tip: Option<Vec<f64>>,
+}
+
+/// One output line: matrices as lists of rows.
+#[derive(Debug, Serialize)]
+struct Output {
+    mass_matrix: Vec<Vec<f64>>,
+    coriolis: Vec<f64>,
+    gravity: Vec<f64>,
+    inverse_dynamics: Vec<f64>,
+    forward_dynamics: Vec<f64>,
+    coriolis_matrix: Vec<Vec<f64>>,
+    end_effector_pose: Vec<Vec<f64>>,
+}
+
+/// `dynamics-gen eval`: answers every line of stdin until the first bad one.
+pub fn run(args: &ModelArgs) -> Result<(), String> {
+    let robot = args.load()?;
+    let stdin = std::io::stdin();
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    for (i, line) in stdin.lock().lines().enumerate() {
+        let number = i + 1;
+        let line = line.map_err(|e| format!("line {number}: cannot read standard input: {e}"))?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let answer = eval_line(&robot, &line).map_err(|e| format!("line {number}: {e}"))?;
+        let json = serde_json::to_string(&answer)
+            .map_err(|e| format!("line {number}: cannot write the result: {e}"))?;
+        writeln!(out, "{json}")
+            .and_then(|()| out.flush())
+            .map_err(|e| format!("cannot write to standard output: {e}"))?;
+    }
+    Ok(())
+}
+
+/// The answer to one line, or what is wrong with it.
+fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
+    let state: State = serde_json::from_str(line).map_err(|e| json_message(&e))?;
+    let n = robot.dof();
+    let joint_vector = |name: &str, v: Option<Vec<f64>>| -> Result<Vec<f64>, String> {
+        match v {
+            None => Ok(vec![0.0; n]),
+            Some(v) if v.len() == n => Ok(v),
+            Some(v) => Err(format!(
+                "\"{name}\" has {} values, the robot has {n} joints",
+                v.len()
+            )),
+        }
+    };
+    let q = joint_vector("q", Some(state.q))?;
+    let qd = joint_vector("qd", state.qd)?;
+    let qdd = joint_vector("qdd", state.qdd)?;
+    let tau = joint_vector("tau", state.tau)?;
+    let f_tip = match state.f_tip {
+        None => Vector6::zeros(),
+        Some(v) if v.len() == 6 => Vector6::from_column_slice(&v),
+        Some(v) => {
+            return Err(format!(
+                "\"f_tip\" has {} values, a wrench has 6: (mx, my, mz, fx, fy, fz) in the end-effector frame",
+                v.len()
+            ))
+        }
+    };
+    let g = robot.gravity;
+    let forward = dynamics_reference::forward_dynamics(robot, &q, &qd, &tau, &g, &f_tip)
+        .map_err(|e| format!("forward dynamics: {e}"))?;
+    Ok(Output {
+        mass_matrix: rows(&dynamics_reference::mass_matrix(robot, &q)),
+        coriolis: dynamics_reference::vel_quadratic_forces(robot, &q, &qd)
+            .as_slice()
+            .to_vec(),
+        gravity: dynamics_reference::gravity_forces(robot, &q, &g)
+            .as_slice()
+            .to_vec(),
+        inverse_dynamics: dynamics_reference::inverse_dynamics(robot, &q, &qd, &qdd, &g, &f_tip)
+            .as_slice()
+            .to_vec(),
+        forward_dynamics: forward.as_slice().to_vec(),
+        coriolis_matrix: rows(&dynamics_reference::coriolis_matrix(robot, &q, &qd)),
+        end_effector_pose: pose_rows(&dynamics_reference::end_effector_pose(robot, &q)),
+    })
+}
+
+fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
+}
+
+fn pose_rows(m: &Matrix4<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
+}
+
+/// serde_json's message without its position (a line is one JSON value; the column stays).
+fn json_message(e: &serde_json::Error) -> String {
+    let text = e.to_string();
+    let suffix = format!(" at line {} column {}", e.line(), e.column());
+    match text.strip_suffix(&suffix) {
+        Some(message) => format!("{message} (column {})", e.column()),
+        None => text,
+    }
+}

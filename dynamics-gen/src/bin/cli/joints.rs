@@ -1,0 +1,37 @@
+//! `joints` and `robots`.
+
+use super::args::ModelArgs;
+use dynamics_gen::dynamics_model::{shipped, JointKind};
+
+/// `dynamics-gen joints`: one movable joint per line, in vector order.
+pub fn run(args: &ModelArgs) -> Result<(), String> {
+    let robot = args.load()?;
+    let width = robot.joints.iter().map(|j| j.name.len()).max().unwrap_or(0);
+    for j in &robot.joints {
+        // `+ 0.0` prints −0 as 0.
+        let s: Vec<String> = j.screw.iter().map(|x| format!("{}", x + 0.0)).collect();
+        let unit = match j.kind {
+            JointKind::Revolute => "rad",
+            JointKind::Prismatic => "m",
+        };
+        let limits = match &j.limits {
+            Some(l) => format!("limits [{}, {}] {unit}", l.lower, l.upper),
+            None => "unlimited".to_string(),
+        };
+        println!(
+            "{:<width$}  {:<9}  S = ({})  {limits}",
+            j.name,
+            j.kind.as_str(),
+            s.join(", ")
+        );
+    }
+    Ok(())
+}
+
+/// `dynamics-gen robots`: the shipped robots.
+pub fn robots() -> Result<(), String> {
+    for r in shipped::ROBOTS {
+        println!("{:<10} {}", r.name, r.file);
+    }
+    Ok(())
+}

@@ -1,0 +1,313 @@
+//! The build.rs front end: generate a robot's dynamics into `OUT_DIR`, in the style of
+//! `prost-build`.
+//!
+//! ```no_run
+//! // build.rs, in `fn main()`; Cargo.toml: [build-dependencies] dynamics-gen = "0.1"
+//! dynamics_gen::Builder::new("robots/my_arm.urdf") // relative to CARGO_MANIFEST_DIR
+//!     .name("MyArm")
+//!     .no_std(true)
+//!     .lock("gripper_joint", 0.0)
+//!     .compile()
+//!     .unwrap_or_else(|e| panic!("{e}"));
+//! ```
+//!
+//! ```ignore
+//! // src/lib.rs
+//! pub mod my_arm {
+//!     include!(concat!(env!("OUT_DIR"), "/my_arm.rs"));
+//! }
+//! ```
+//!
+//! A shipped robot is named instead of a path (`Builder::new("ur5")`); the one-line shortcut
+//! with the default options is [`compile_robot`].
+
+use crate::error::Error;
+use crate::options::{Options, Scalar};
+use dynamics_model::load::{self, Format};
+use dynamics_model::{shipped, ModelError, Robot};
+use nalgebra::Vector3;
+use std::path::{Path, PathBuf};
+
+/// Where a robot description comes from, once resolved.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Source {
+    /// A robot file: the path as given and the path to read.
+    File { given: String, path: PathBuf },
+    /// A shipped robot, by name.
+    Shipped(String),
+}
+
+/// Generates a robot's dynamics from a build script; see the [module docs](self).
+#[derive(Clone, Debug)]
+pub struct Builder {
+    robot: String,
+    options: Options,
+    out_file: Option<String>,
+    out_dir: Option<PathBuf>,
+}
+
+impl Builder {
+    /// A builder for `robot`: a `.urdf`/`.toml` path (relative paths are taken relative to
+    /// `CARGO_MANIFEST_DIR`, the directory of the crate being built) or the name of a shipped
+    /// robot ([`dynamics_model::shipped::NAMES`]). An existing file wins over a shipped name.
+    pub fn new(robot: impl Into<String>) -> Self {
+        Self {
+            robot: robot.into(),
+            options: Options::default(),
+            out_file: None,
+            out_dir: None,
+        }
+    }
+
+    /// The generated struct's name (default: the robot's name in UpperCamelCase).
+    pub fn name(&mut self, name: impl Into<String>) -> &mut Self {
+        self.options.name = Some(name.into());
+        self
+    }
+
+    /// The scalar type of the generated code (default `f64`).
+    pub fn scalar(&mut self, scalar: Scalar) -> &mut Self {
+        self.options.scalar = scalar;
+        self
+    }
+
+    /// Emit `no_std` code (trigonometry through `::libm`, so the crate must depend on `libm`).
+    pub fn no_std(&mut self, no_std: bool) -> &mut Self {
+        self.options.no_std = no_std;
+        self
+    }
+
+    /// Replaces the robot's gravity vector (in the base frame {0}, m/s²).
+    pub fn gravity(&mut self, gravity: [f64; 3]) -> &mut Self {
+        self.options.load.gravity = Some(Vector3::from(gravity));
+        self
+    }
+
+    /// URDF: the link whose frame is the end-effector frame {n+1}.
+    pub fn tip(&mut self, link: impl Into<String>) -> &mut Self {
+        self.options.load.tip = Some(link.into());
+        self
+    }
+
+    /// URDF: locks the movable joint `joint` at `value` (rad or m), making it fixed. May be
+    /// called several times.
+    pub fn lock(&mut self, joint: impl Into<String>, value: f64) -> &mut Self {
+        self.options.load.lock.push((joint.into(), value));
+        self
+    }
+
+    /// The path of the nalgebra crate in the generated code (default `::nalgebra`).
+    pub fn nalgebra_path(&mut self, path: impl Into<String>) -> &mut Self {
+        self.options.nalgebra_path = path.into();
+        self
+    }
+
+    /// The generated file's name in the output directory (default `<robot>.rs`, where
+    /// `<robot>` is the robot file's stem or the shipped robot's name).
+    pub fn out_file(&mut self, file_name: impl Into<String>) -> &mut Self {
+        self.out_file = Some(file_name.into());
+        self
+    }
+
+    /// The output directory (default: the `OUT_DIR` cargo gives build scripts).
+    pub fn out_dir(&mut self, dir: impl Into<PathBuf>) -> &mut Self {
+        self.out_dir = Some(dir.into());
+        self
+    }
+
+    /// The generator options collected so far.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// Loads and validates the robot, with the tip, locks and gravity applied.
+    pub fn load(&self) -> Result<Robot, Error> {
+        Ok(self.load_with_source()?.0)
+    }
+
+    /// The formatted generated file, without touching the file system (beyond reading the
+    /// robot file) or printing anything.
+    pub fn generate(&self) -> Result<String, Error> {
+        let (robot, source) = self.load_with_source()?;
+        let header_source = match &source {
+            Source::File { given, .. } => given.clone(),
+            Source::Shipped(name) => format!("shipped robot `{name}`"),
+        };
+        crate::emit::generate_file(&robot, &self.options, &header_source)
+    }
+
+    /// Generates the file into the output directory, rewriting it only when its content
+    /// changed (so cargo does not rebuild needlessly), and prints
+    /// `cargo:rerun-if-changed=<robot file>` when the robot is a file. Returns the path written.
+    pub fn write(&self) -> Result<PathBuf, Error> {
+        let source = self.resolve();
+        let code = self.generate()?;
+        let dir = match &self.out_dir {
+            Some(dir) => dir.clone(),
+            None => std::env::var_os("OUT_DIR")
+                .map(PathBuf::from)
+                .ok_or_else(|| Error::Io {
+                    path: "OUT_DIR".into(),
+                    message: "OUT_DIR is not set: call write() from a build script, or give the directory with .out_dir(..)".into(),
+                })?,
+        };
+        let path = dir.join(self.file_name(&source));
+        write_if_changed(&path, &code)?;
+        if let Source::File { path: robot, .. } = &source {
+            println!("cargo:rerun-if-changed={}", robot.display());
+        }
+        Ok(path)
+    }
+
+    /// The same as [`Builder::write`] (the name prost-build users expect).
+    pub fn compile(&self) -> Result<PathBuf, Error> {
+        self.write()
+    }
+
+    fn file_name(&self, source: &Source) -> String {
+        if let Some(name) = &self.out_file {
+            return name.clone();
+        }
+        let stem = match source {
+            Source::File { path, .. } => path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "robot".into()),
+            Source::Shipped(name) => name.clone(),
+        };
+        format!("{stem}.rs")
+    }
+
+    /// Where the robot comes from: a file (relative to `CARGO_MANIFEST_DIR`) or a shipped name.
+    fn resolve(&self) -> Source {
+        let given = Path::new(&self.robot);
+        let path = match std::env::var_os("CARGO_MANIFEST_DIR") {
+            Some(dir) if given.is_relative() => Path::new(&dir).join(given),
+            _ => given.to_path_buf(),
+        };
+        if !path.is_file() && shipped::get(&self.robot).is_some() {
+            return Source::Shipped(self.robot.clone());
+        }
+        Source::File {
+            given: self.robot.clone(),
+            path,
+        }
+    }
+
+    fn load_with_source(&self) -> Result<(Robot, Source), Error> {
+        let source = self.resolve();
+        let robot = match &source {
+            Source::Shipped(name) => load::load(name, &self.options.load)?,
+            Source::File { given, path } => {
+                let looks_like_file = Format::from_path(path).is_some()
+                    || given.contains('/')
+                    || given.contains('\\');
+                if !path.is_file() && !looks_like_file {
+                    // Neither a file nor a shipped name: the model's error lists the shipped robots.
+                    load::load(given, &self.options.load)?
+                } else {
+                    let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
+                        file: path.display().to_string(),
+                        message: "unknown file type: the robot file must end in .toml or .urdf"
+                            .into(),
+                    })?;
+                    let text = std::fs::read_to_string(path).map_err(|e| ModelError::Io {
+                        file: path.display().to_string(),
+                        message: e.to_string(),
+                    })?;
+                    // Named as given, so the generated file does not depend on the machine.
+                    load::from_str(&text, format, given, &self.options.load)?
+                }
+            }
+        };
+        Ok((robot, source))
+    }
+}
+
+/// Writes `code` to `path` unless the file already holds exactly `code`.
+fn write_if_changed(path: &Path, code: &str) -> Result<(), Error> {
+    if std::fs::read_to_string(path).is_ok_and(|old| old == code) {
+        return Ok(());
+    }
+    std::fs::write(path, code).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// The one-line build.rs: generates `robot` (a path relative to `CARGO_MANIFEST_DIR`, or a
+/// shipped name) with the default options into `OUT_DIR/<robot>.rs`.
+///
+/// ```no_run
+/// // build.rs, in `fn main()`
+/// dynamics_gen::compile_robot("robots/ur5.urdf").unwrap_or_else(|e| panic!("{e}"));
+/// ```
+pub fn compile_robot(robot: &str) -> Result<PathBuf, Error> {
+    Builder::new(robot).compile()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp_dir(tag: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("dynamics-gen-builder-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn shipped_name_generates_a_header_naming_it() {
+        let code = Builder::new("pendulum").no_std(true).generate().unwrap();
+        assert!(code.starts_with("// @generated by dynamics-gen"), "{code}");
+        assert!(code.contains("shipped robot `pendulum`"));
+        assert!(code.contains("::libm::"));
+    }
+
+    #[test]
+    fn unknown_name_lists_the_shipped_robots() {
+        let err = Builder::new("no_such_robot").generate().unwrap_err();
+        let msg = err.to_string();
+        assert!(
+            msg.contains("no_such_robot") && msg.contains("pendulum"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn missing_file_names_the_file() {
+        let err = Builder::new("robots/missing.urdf").generate().unwrap_err();
+        assert!(err.to_string().contains("missing.urdf"), "{err}");
+    }
+
+    #[test]
+    fn write_uses_the_default_file_name_and_keeps_an_unchanged_file() {
+        let dir = temp_dir("write");
+        let mut b = Builder::new("pendulum");
+        b.out_dir(&dir).name("Pend");
+        let path = b.write().unwrap();
+        assert_eq!(path, dir.join("pendulum.rs"));
+        let code = std::fs::read_to_string(&path).unwrap();
+        assert!(code.contains("pub struct Pend"));
+        let modified = std::fs::metadata(&path).unwrap().modified().unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        b.write().unwrap();
+        assert_eq!(
+            std::fs::metadata(&path).unwrap().modified().unwrap(),
+            modified
+        );
+        let other = b.out_file("p.rs").write().unwrap();
+        assert_eq!(other, dir.join("p.rs"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn gravity_override_reaches_the_code() {
+        let code = Builder::new("pendulum")
+            .gravity([0.0, 0.0, -1.62])
+            .generate()
+            .unwrap();
+        assert!(code.contains("-1.62"), "{code}");
+    }
+}
