@@ -115,7 +115,7 @@
 //! file, the link or joint, the field and the fix; all such problems are reported at once.
 //!
 //! [`from_str`] checks the file and builds the robot exactly as written (a screw axis with
-//! `|ω| ≠ 1` is kept, as the book's functions accept it); [`crate::load`] then validates
+//! `|ω| ≠ 1` is kept, as the book's functions accept it); [`crate::load()`] then validates
 //! the robot ([`crate::validate`]: unit screw axes, rigid homes, physical inertias).
 
 // The helpers return `Result<_, Invalid>` on a cold path whose errors are collected into a
