@@ -26,6 +26,32 @@
 //!   `τ = M(θ) θ̈ + c(θ, θ̇) + g(θ) + J_b(θ)ᵀ F_tip`, where `J_b` is the body Jacobian of {n+1},
 //!   `c = C(θ, θ̇) θ̇` (Coriolis and centripetal terms) and `g(θ) = ∂P/∂θ`.
 //!
+//! # Example
+//!
+//! A point mass m on a massless rod of length l, swinging about the x axis of {0}:
+//! `M = m l²` and `g(θ) = m g₀ l sin θ`.
+//!
+//! ```
+//! use dynamics_model::lie::rp_to_trans;
+//! use dynamics_model::Robot;
+//! use nalgebra::{Matrix3, Matrix4, Matrix6, Vector3, Vector6};
+//!
+//! let (m, l) = (2.0, 0.5);
+//! let m01 = rp_to_trans(&Matrix3::identity(), &Vector3::new(0.0, 0.0, -l)); // the mass
+//! let g1 = Matrix6::from_diagonal(&Vector6::new(0.0, 0.0, 0.0, m, m, m));
+//! let s1 = Vector6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+//! let robot = Robot::from_mr_lists(&[m01, Matrix4::identity()], &[g1], &[s1], Vector3::new(0.0, 0.0, -9.81))?;
+//!
+//! let q = [0.3];
+//! let tau = dynamics_reference::inverse_dynamics(&robot, &q, &[0.0], &[1.5], &robot.gravity, &Vector6::zeros());
+//! let expected = m * l * l * 1.5 + m * 9.81 * l * q[0].sin();
+//! assert!((tau[0] - expected).abs() < 1e-12);
+//!
+//! let qdd = dynamics_reference::forward_dynamics(&robot, &q, &[0.0], tau.as_slice(), &robot.gravity, &Vector6::zeros())?;
+//! assert!((qdd[0] - 1.5).abs() < 1e-12);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # API
 //!
 //! Every function takes the robot first. Joint-space vectors (θ, θ̇, θ̈, τ) are `&[f64]` of
