@@ -199,6 +199,19 @@ fn wrong_array_length_names_field_and_length() {
 }
 
 #[test]
+fn unknown_key_in_a_pose() {
+    invalid(
+        &edit(
+            "home = { xyz = [0, 0, 0.5] }",
+            "home = { xzy = [0, 0, 0.5] }",
+        ),
+        "link `l1`",
+        "home",
+        "unknown field `xzy`",
+    );
+}
+
+#[test]
 fn negative_mass() {
     invalid(
         &edit("mass = 1.0", "mass = -1.0"),
