@@ -1,0 +1,315 @@
+//! The `dynamics-gen` binary, run as a user would.
+
+use serde_json::Value;
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_dynamics-gen"))
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("the binary runs")
+}
+
+fn run_with_stdin(args: &[&str], stdin: &str) -> Output {
+    let mut child = bin()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8(bytes.to_vec()).unwrap()
+}
+
+fn reference() -> Value {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/reference/mr_ur5.json"
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Array(items) => items.iter().flat_map(floats).collect(),
+        Value::Number(x) => vec![x.as_f64().unwrap()],
+        other => panic!("not a number: {other}"),
+    }
+}
+
+/// ‖x − y‖∞ ≤ 1e-9·‖y‖∞ + 1e-12; returns the relative error for the report.
+fn assert_close(what: &str, x: &[f64], y: &[f64]) -> f64 {
+    assert_eq!(x.len(), y.len(), "{what}: lengths");
+    let err = x
+        .iter()
+        .zip(y)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let scale = y.iter().map(|b| b.abs()).fold(0.0, f64::max);
+    assert!(
+        err <= 1e-9 * scale + 1e-12,
+        "{what}: error {err:e}, scale {scale}\n  got  {x:?}\n  want {y:?}"
+    );
+    err / scale.max(1e-300)
+}
+
+#[test]
+fn generate_prints_code_with_the_generated_header() {
+    let out = run(&["generate", "pendulum", "--no-std", "--name", "Pend"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let code = text(&out.stdout);
+    assert!(code.starts_with("// @generated"), "{code}");
+    assert!(code.contains("pub struct Pend;"));
+    assert!(code.contains("::libm::sin"));
+    for f in [
+        "mass_matrix",
+        "coriolis",
+        "gravity",
+        "inverse_dynamics",
+        "forward_dynamics",
+    ] {
+        assert!(code.contains(&format!("pub fn {f}(")), "{f}");
+    }
+}
+
+#[test]
+fn generate_writes_the_file_given_with_o() {
+    let path = std::env::temp_dir().join(format!("dynamics-gen-cli-{}.rs", std::process::id()));
+    let out = run(&[
+        "generate",
+        "ur5",
+        "--scalar",
+        "f32",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(out.stdout.is_empty());
+    let code = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert!(code.starts_with("// @generated"));
+    assert!(code.contains("SVector<f32, 6>"));
+}
+
+#[test]
+fn stats_prints_a_row_per_function_and_featherstone() {
+    let out = run(&["stats", "ur5"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let table = text(&out.stdout);
+    for f in [
+        "mass_matrix",
+        "coriolis",
+        "gravity",
+        "inverse_dynamics",
+        "forward_dynamics",
+    ] {
+        let row = table
+            .lines()
+            .find(|l| l.starts_with(f) && l.split_whitespace().next() == Some(f))
+            .unwrap_or_else(|| panic!("no row for {f}:\n{table}"));
+        let numbers: Vec<usize> = row
+            .split_whitespace()
+            .skip(1)
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert_eq!(numbers.len(), 7, "{row}");
+        // Six revolute joints: one sin/cos per joint at most.
+        assert!(numbers[4] <= 6, "{row}");
+        assert!(numbers[0] > 0 && numbers[6] > 0, "{row}");
+    }
+    // 93·6 − 69 = 489, 81·6 − 66 = 420.
+    assert!(table.contains("489 mul, 420 add/sub"), "{table}");
+}
+
+#[test]
+fn eval_matches_the_modern_robotics_library_on_mr_ur5() {
+    let data = reference();
+    let s = &data["samples"][0];
+    let line = serde_json::json!({
+        "q": s["thetalist"], "qd": s["dthetalist"], "qdd": s["ddthetalist"],
+        "tau": s["taulist"], "f_tip": s["Ftip"],
+    })
+    .to_string();
+    // The same state twice, around a blank line; then q and qd alone.
+    let q_only = serde_json::json!({"q": s["thetalist"], "qd": s["dthetalist"]}).to_string();
+    let input = format!("{line}\n\n{line}\n{q_only}\n");
+    let out = run_with_stdin(&["eval", "mr_ur5"], &input);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let answers: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(answers.len(), 3, "{stdout}");
+    assert_eq!(answers[0], answers[1]);
+    let a = &answers[0];
+    let o = &s["outputs"];
+    let mut worst: f64 = 0.0;
+    for (ours, theirs) in [
+        ("mass_matrix", "MassMatrix"),
+        ("coriolis", "VelQuadraticForces"),
+        ("gravity", "GravityForces"),
+        ("inverse_dynamics", "InverseDynamics"),
+        ("forward_dynamics", "ForwardDynamics"),
+        ("end_effector_pose", "FKinSpace"),
+    ] {
+        worst = worst.max(assert_close(ours, &floats(&a[ours]), &floats(&o[theirs])));
+    }
+    // Without qdd, tau and f_tip (zero): τ = c + g, the sum of the library's two terms.
+    let c_plus_g: Vec<f64> = floats(&o["VelQuadraticForces"])
+        .iter()
+        .zip(floats(&o["GravityForces"]))
+        .map(|(c, g)| c + g)
+        .collect();
+    assert_close(
+        "inverse_dynamics(q, qd)",
+        &floats(&answers[2]["inverse_dynamics"]),
+        &c_plus_g,
+    );
+    // C(q, q̇) q̇ = c(q, q̇).
+    let n = 6;
+    let cm = floats(&a["coriolis_matrix"]);
+    let qd = floats(&s["dthetalist"]);
+    let c_qd: Vec<f64> = (0..n)
+        .map(|i| (0..n).map(|j| cm[i * n + j] * qd[j]).sum())
+        .collect();
+    assert_close(
+        "coriolis_matrix·qd",
+        &c_qd,
+        &floats(&o["VelQuadraticForces"]),
+    );
+    eprintln!("eval vs Modern Robotics, worst relative error: {worst:e}");
+}
+
+#[test]
+fn eval_reports_a_short_q_with_its_line_and_answers_the_lines_before() {
+    let good = r#"{"q": [0, 0, 0, 0, 0, 0]}"#;
+    let input = format!("{good}\n{good}\n{{\"q\": [1, 2, 3, 4, 5]}}\n{good}\n");
+    let out = run_with_stdin(&["eval", "mr_ur5"], &input);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(text(&out.stdout).lines().count(), 2);
+    let err = text(&out.stderr);
+    assert!(
+        err.contains(r#"error: line 3: "q" has 5 values, the robot has 6 joints"#),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn eval_rejects_an_unknown_key() {
+    let input = "{\"q\": [0, 0, 0, 0, 0, 0], \"qdot\": [1, 1, 1, 1, 1, 1]}\n";
+    let out = run_with_stdin(&["eval", "mr_ur5"], input);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    let err = text(&out.stderr);
+    assert!(
+        err.starts_with("error: line 1: unknown field `qdot`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn joints_lists_ur5_in_vector_order() {
+    let out = run(&["joints", "ur5"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let names: Vec<&str> = stdout
+        .lines()
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "shoulder_pan_joint",
+            "shoulder_lift_joint",
+            "elbow_joint",
+            "wrist_1_joint",
+            "wrist_2_joint",
+            "wrist_3_joint"
+        ]
+    );
+    // The shoulder pan axis is the z axis through the base origin.
+    assert!(
+        stdout
+            .lines()
+            .next()
+            .unwrap()
+            .contains("S = (0, 0, 1, 0, 0, 0)"),
+        "{stdout}"
+    );
+    assert!(stdout.lines().all(|l| l.contains("revolute")));
+}
+
+#[test]
+fn errors_are_one_line_with_exit_code_1() {
+    for (args, expected) in [
+        (
+            &["generate", "no_such_robot"][..],
+            "error: unknown robot `no_such_robot`",
+        ),
+        (
+            &["joints", "ur5", "--lock", "elbow_joint"][..],
+            "JOINT=VALUE",
+        ),
+        (&["stats", "ur5", "--gravity", "0,-9.81"][..], "GX,GY,GZ"),
+        (
+            &["generate", "does/not/exist.urdf"][..],
+            "error: does/not/exist.urdf",
+        ),
+        (
+            &["generate", "pendulum", "--name", "not a name"][..],
+            "error: `not a name` is not a valid Rust struct name",
+        ),
+    ] {
+        let out = run(args);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.starts_with("error: "), "{args:?}: {err}");
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert!(
+            !err.contains("panicked") && !err.contains("backtrace"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn gravity_and_lock_options_reach_the_model() {
+    // Zero gravity: g(q) = 0.
+    let out = run_with_stdin(
+        &["eval", "mr_ur5", "--gravity", "0,0,0"],
+        "{\"q\": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]}\n",
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
+    assert!(floats(&v["gravity"]).iter().all(|g| *g == 0.0), "{v}");
+    // Locking the last UR5 joint leaves five.
+    let out = run(&["joints", "ur5", "--lock", "wrist_3_joint=0.5"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert_eq!(stdout.lines().count(), 5);
+    assert!(!stdout.contains("wrist_3_joint"));
+}
+
+#[test]
+fn help_names_the_shipped_robots() {
+    let out = run(&["generate", "--help"]);
+    assert!(out.status.success());
+    let help = text(&out.stdout);
+    for name in dynamics_gen::dynamics_model::shipped::NAMES {
+        assert!(help.contains(name), "{name}: {help}");
+    }
+}
