@@ -22,6 +22,7 @@
 use dynamics_model::lie::{angular, linear, rotation, rp_to_trans, trans_inv, translation};
 use dynamics_model::{JointKind, Robot, SpatialInertia};
 use nalgebra::{Matrix3, Matrix4, Vector3};
+use std::f64::consts::FRAC_PI_2;
 
 /// A rigid body's inertia in a frame: mass `m`, first moment `h = m c` (c = centre of mass)
 /// and rotational inertia `I_o` about the frame's origin; `G = [[I_o, [h]], [[h]ᵀ, m·1₃]]`.
@@ -36,6 +37,21 @@ pub struct BodyInertia {
 }
 
 impl BodyInertia {
+    /// The 6×6 spatial inertia `[[I_o, [h]], [[h]ᵀ, m·1₃]]`.
+    pub fn to_spatial(&self) -> SpatialInertia {
+        let [xx, yy, zz, xy, xz, yz] = self.i;
+        let [hx, hy, hz] = self.h;
+        let m = self.m;
+        SpatialInertia(nalgebra::Matrix6::from_row_slice(&[
+            xx, xy, xz, 0.0, -hz, hy, //
+            xy, yy, yz, hz, 0.0, -hx, //
+            xz, yz, zz, -hy, hx, 0.0, //
+            0.0, hz, -hy, m, 0.0, 0.0, //
+            -hz, 0.0, hx, 0.0, m, 0.0, //
+            hy, -hx, 0.0, 0.0, 0.0, m,
+        ]))
+    }
+
     /// Reads the ten inertial parameters off a 6×6 spatial inertia.
     pub fn from_spatial(g: &SpatialInertia) -> Self {
         let m = g.0;
@@ -66,6 +82,9 @@ pub struct JointFrame {
     pub p: [f64; 3],
     /// Link i's inertia in {J_i}.
     pub inertia: BodyInertia,
+    /// The joint's home offset: the joint part is `Rot_z(−(θ_i + offset))` or
+    /// `Trans_z(−(θ_i + offset))` (the DH θ or d of the home configuration).
+    pub offset: f64,
 }
 
 /// The whole chain in joint frames, and gravity in {0}.
@@ -77,74 +96,303 @@ pub struct JointFrames {
     pub gravity: [f64; 3],
 }
 
-/// The pose `T_{i,J_i}` of joint i's frame in link frame {i}: z along the joint axis, origin
-/// on the axis (revolute) or at the link frame's origin (prismatic).
-pub fn joint_frame_in_link(kind: JointKind, a: &nalgebra::Vector6<f64>) -> Matrix4<f64> {
-    let (axis, origin) = match kind {
-        JointKind::Revolute => {
-            let w = angular(a);
-            let w = w / w.norm();
-            // For A = (ω, −ω × q), ω × v = q − (ω·q) ω: the point of the axis nearest the origin.
-            (w, w.cross(&linear(a)))
-        }
-        JointKind::Prismatic => {
-            let v = linear(a);
-            (v / v.norm(), Vector3::zeros())
-        }
-    };
-    rp_to_trans(&frame_with_z(&axis), &origin)
+/// Angles within this distance (rad) of a multiple of π/2 are snapped to it, and lengths
+/// below it (m) to zero, so that the constants fold to exact zeros and ones.
+pub const SNAP: f64 = 1e-12;
+
+/// Inertial parameters below this fraction of the largest one are rounding noise: zero.
+pub const INERTIA_SNAP: f64 = 1e-13;
+
+/// A joint axis as a line in {0} at the home configuration: a point and a unit direction.
+struct AxisLine {
+    point: Vector3<f64>,
+    dir: Vector3<f64>,
 }
 
-/// A rotation whose third column is the unit vector `z`; a signed permutation (exact) when
-/// `z` is a coordinate axis.
-fn frame_with_z(z: &Vector3<f64>) -> Matrix3<f64> {
-    for k in 0..3 {
-        let s = z[k];
-        if (s == 1.0 || s == -1.0) && z.iter().enumerate().all(|(j, &x)| j == k || x == 0.0) {
-            // x' = e_{k+1}, y' = z' × x' (exact signed permutation).
-            let zc = Vector3::ith(k, s);
-            let xc = Vector3::ith((k + 1) % 3, 1.0);
-            let yc = zc.cross(&xc);
-            return Matrix3::from_columns(&[xc, yc, zc]);
-        }
+fn axis_lines(robot: &Robot) -> Vec<AxisLine> {
+    let homes = robot.home_poses();
+    robot
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| match j.kind {
+            JointKind::Revolute => {
+                let w = angular(&j.screw);
+                let w = w / w.norm();
+                AxisLine {
+                    point: w.cross(&linear(&j.screw)),
+                    dir: w,
+                }
+            }
+            JointKind::Prismatic => {
+                let v = linear(&j.screw);
+                AxisLine {
+                    point: translation(&homes[i + 1]),
+                    dir: v / v.norm(),
+                }
+            }
+        })
+        .collect()
+}
+
+/// A unit vector perpendicular to `z`, as close as possible to `hint`.
+fn perpendicular(z: &Vector3<f64>, hint: &Vector3<f64>) -> Vector3<f64> {
+    let x = hint - z * z.dot(hint);
+    if x.norm() > 1e-6 {
+        return x.normalize();
     }
-    // Gram–Schmidt from the coordinate axis least aligned with z.
     let k = (0..3)
         .min_by(|&a, &b| z[a].abs().total_cmp(&z[b].abs()))
         .unwrap_or(0);
     let e = Vector3::ith(k, 1.0);
-    let x = (e - z * z[k]).normalize();
-    let y = z.cross(&x);
-    Matrix3::from_columns(&[x, y, *z])
+    (e - z * z[k]).normalize()
 }
 
-/// Expresses `robot` in joint frames (see the module docs).
+/// Home poses `T_{0,J_i}` of modified-DH joint frames (Craig's convention): `z_i` along
+/// axis i, `x_i` along the common normal from axis i to axis i+1, origin where that normal
+/// leaves axis i (for parallel axes: where the previous normal landed, so `d_i = 0`).
+fn dh_frames(lines: &[AxisLine]) -> Vec<Matrix4<f64>> {
+    let n = lines.len();
+    let mut frames = Vec::with_capacity(n);
+    // Where the previous common normal lands on axis i; for axis 1 the point nearest {0}'s origin.
+    let first = &lines[0];
+    let mut landing = first.point - first.dir * first.dir.dot(&first.point);
+    let mut prev_x = Vector3::x();
+    for i in 0..n {
+        let AxisLine { point, dir: z } = &lines[i];
+        let (origin, x, next_landing) = if i + 1 < n {
+            let next = &lines[i + 1];
+            let c = z.cross(&next.dir);
+            if c.norm() > 1e-9 {
+                // Closest point of axis i to axis i+1, and its mirror on axis i+1.
+                let w = next.point - point;
+                let s = w.cross(&next.dir).dot(&c) / c.norm_squared();
+                let t = w.cross(z).dot(&c) / c.norm_squared();
+                let o = point + z * s;
+                let land = next.point + next.dir * t;
+                let gap = land - o;
+                let x = if gap.norm() > 1e-9 {
+                    gap.normalize()
+                } else {
+                    let cn = c.normalize();
+                    if cn.dot(&prev_x) < 0.0 {
+                        -cn
+                    } else {
+                        cn
+                    }
+                };
+                (o, x, land)
+            } else {
+                // Parallel axes: start at the previous landing point (d = 0).
+                let o = landing;
+                let w = next.point - o;
+                let perp = w - z * z.dot(&w);
+                let x = if perp.norm() > 1e-9 {
+                    perp.normalize()
+                } else {
+                    perpendicular(z, &prev_x)
+                };
+                (o, x, o + perp)
+            }
+        } else {
+            (landing, perpendicular(z, &prev_x), landing)
+        };
+        let y = z.cross(&x);
+        frames.push(rp_to_trans(&Matrix3::from_columns(&[x, y, *z]), &origin));
+        landing = next_landing;
+        prev_x = x;
+    }
+    frames
+}
+
+fn snap_angle(a: f64) -> f64 {
+    let k = (a / FRAC_PI_2).round();
+    if (a - k * FRAC_PI_2).abs() <= SNAP {
+        k * FRAC_PI_2
+    } else {
+        a
+    }
+}
+
+fn snap_length(x: f64) -> f64 {
+    if x.abs() <= SNAP {
+        0.0
+    } else {
+        x
+    }
+}
+
+/// `(sin a, cos a)`, exact for multiples of π/2.
+fn sin_cos(a: f64) -> (f64, f64) {
+    let k = a / FRAC_PI_2;
+    if k == k.round() && k.abs() < 1e6 {
+        match (k as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        dynamics_model::lie::sin_cos(a)
+    }
+}
+
+fn rot_x(a: f64) -> Matrix3<f64> {
+    let (s, c) = sin_cos(a);
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+}
+
+fn rot_z(a: f64) -> Matrix3<f64> {
+    let (s, c) = sin_cos(a);
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// Writes the pose `x` of {J_i} in {J_{i−1}} as modified DH parameters
+/// `Rot_x(α) Trans_x(a) Rot_z(θ₀) Trans_z(d)` with snapped values, and returns the constant
+/// part and offset of `T_{J_i,J_{i−1}}(θ) = Rot_z(−(θ + θ₀)) · (Rot_x(−α), (−a, 0, −d))`
+/// (revolute) or `Trans_z(−(θ + d)) · Rot_z(−θ₀) · (Rot_x(−α), (−a, 0, 0))` (prismatic), or
+/// `None` if `x` is not of that form.
+fn dh_parameters(kind: JointKind, x: &Matrix4<f64>) -> Option<(Matrix3<f64>, Vector3<f64>, f64)> {
+    let r = rotation(x);
+    let t = translation(x);
+    let alpha = snap_angle(f64::atan2(-r[(1, 2)], r[(2, 2)]));
+    let theta0 = snap_angle(f64::atan2(-r[(0, 1)], r[(0, 0)]));
+    let (sa, ca) = sin_cos(alpha);
+    let a = snap_length(t[0]);
+    let d = snap_length(t[2] * ca - t[1] * sa);
+    // Check that x really has the DH form.
+    let rebuilt_r = rot_x(alpha) * rot_z(theta0);
+    let rebuilt_t = Vector3::new(a, -d * sa, d * ca);
+    if (rebuilt_r - r).amax() > 1e-9 || (rebuilt_t - t).amax() > 1e-9 {
+        return None;
+    }
+    match kind {
+        JointKind::Revolute => {
+            // Multiples of π/2 fold into the constant part exactly; others go into sin/cos.
+            let snapped = theta0 / FRAC_PI_2 == (theta0 / FRAC_PI_2).round();
+            let (rz, offset) = if snapped {
+                (rot_z(-theta0), 0.0)
+            } else {
+                (Matrix3::identity(), theta0)
+            };
+            let p = rz * Vector3::new(-a, 0.0, -d);
+            Some((rz * rot_x(-alpha), p, offset))
+        }
+        JointKind::Prismatic => {
+            let rz = rot_z(-theta0);
+            Some((rz * rot_x(-alpha), rz * Vector3::new(-a, 0.0, 0.0), d))
+        }
+    }
+}
+
+fn snap_inertia(b: BodyInertia) -> BodyInertia {
+    let scale =
+        b.h.iter()
+            .chain(b.i.iter())
+            .fold(b.m.abs(), |m, x| m.max(x.abs()));
+    let snap = |x: f64| {
+        if x.abs() <= INERTIA_SNAP * scale {
+            0.0
+        } else {
+            x
+        }
+    };
+    BodyInertia {
+        m: b.m,
+        h: b.h.map(snap),
+        i: b.i.map(snap),
+    }
+}
+
+fn rows(r: &Matrix3<f64>) -> [[f64; 3]; 3] {
+    [
+        [r[(0, 0)], r[(0, 1)], r[(0, 2)]],
+        [r[(1, 0)], r[(1, 1)], r[(1, 2)]],
+        [r[(2, 0)], r[(2, 1)], r[(2, 2)]],
+    ]
+}
+
+/// Expresses `robot` in modified-DH joint frames (see the module docs).
 pub fn joint_frames(robot: &Robot) -> JointFrames {
-    let a_list = robot.body_screws();
-    // T_{J_{i−1}} in {i−1}; {J_0} = {0}.
-    let mut t_prev_link_joint = Matrix4::identity();
+    let lines = axis_lines(robot);
+    let frames = if lines.is_empty() {
+        Vec::new()
+    } else {
+        dh_frames(&lines)
+    };
+    let homes = robot.home_poses();
     let mut joints = Vec::with_capacity(robot.dof());
     for (i, (joint, link)) in robot.joints.iter().zip(&robot.links).enumerate() {
-        let t_link_joint = joint_frame_in_link(joint.kind, &a_list[i]);
-        // C_i = T_{J_i, J_{i−1}} = T_{J_i,i} · M_{i−1,i}⁻¹ · T_{i−1,J_{i−1}}.
-        let c = trans_inv(&t_link_joint) * trans_inv(&link.home) * t_prev_link_joint;
-        let r = rotation(&c);
-        let p = translation(&c);
-        let inertia = BodyInertia::from_spatial(&link.inertia.transform_by(&t_link_joint));
+        let t_0j = frames[i];
+        // T_{i,J_i}: the joint frame in link frame {i}.
+        let t_link_joint = trans_inv(&homes[i + 1]) * t_0j;
+        let inertia = snap_inertia(BodyInertia::from_spatial(
+            &link.inertia.transform_by(&t_link_joint),
+        ));
+        let t_prev = if i == 0 {
+            Matrix4::identity()
+        } else {
+            frames[i - 1]
+        };
+        // Pose of {J_i} in {J_{i−1}} at home.
+        let x = trans_inv(&t_prev) * t_0j;
+        let dh = if i == 0 {
+            None
+        } else {
+            dh_parameters(joint.kind, &x)
+        };
+        let (r, p, offset) = dh.unwrap_or_else(|| {
+            let c = trans_inv(&x);
+            (rotation(&c), translation(&c), 0.0)
+        });
         joints.push(JointFrame {
             kind: joint.kind,
-            r: [
-                [r[(0, 0)], r[(0, 1)], r[(0, 2)]],
-                [r[(1, 0)], r[(1, 1)], r[(1, 2)]],
-                [r[(2, 0)], r[(2, 1)], r[(2, 2)]],
-            ],
+            r: rows(&r),
             p: [p[0], p[1], p[2]],
             inertia,
+            offset,
         });
-        t_prev_link_joint = t_link_joint;
     }
+    regroup(&mut joints, &frames);
     JointFrames {
         joints,
         gravity: [robot.gravity[0], robot.gravity[1], robot.gravity[2]],
+    }
+}
+
+/// Regroups inertial parameters across revolute joints (after Khalil and Gautier's base
+/// parameters), tip to base.
+///
+/// Point masses on a revolute joint's axis move the same whether they belong to the link
+/// it drives or to the link before it. Link i's mass `m`, first moment `h_z` along the axis
+/// and an equal share `λ = I_yy` of `I_xx` and `I_yy` are exactly such a distribution
+/// (`Σm = m`, `Σmz = h_z`, `Σmz² = λ`; the dynamics are linear in these parameters, so the
+/// distribution need not be physical), so they are moved to link i−1 (dropped at the fixed
+/// base). Link i keeps `h_x, h_y, I_xx − I_yy, I_zz, I_xy, I_xz, I_yz`: three fewer non-zero
+/// parameters per revolute joint, and the dynamics are unchanged.
+fn regroup(joints: &mut [JointFrame], frames: &[Matrix4<f64>]) {
+    for i in (0..joints.len()).rev() {
+        if joints[i].kind != JointKind::Revolute {
+            continue;
+        }
+        let b = joints[i].inertia;
+        let lambda = b.i[1];
+        let moved = BodyInertia {
+            m: b.m,
+            h: [0.0, 0.0, b.h[2]],
+            i: [lambda, lambda, 0.0, 0.0, 0.0, 0.0],
+        };
+        joints[i].inertia = BodyInertia {
+            m: 0.0,
+            h: [b.h[0], b.h[1], 0.0],
+            i: [b.i[0] - lambda, 0.0, b.i[2], b.i[3], b.i[4], b.i[5]],
+        };
+        if i > 0 {
+            // The moved masses lie on axis i: express them in {J_{i−1}} at any θ_i.
+            let t = trans_inv(&frames[i - 1]) * frames[i];
+            let g = moved.to_spatial().expressed_in(&t);
+            let parent = joints[i - 1].inertia.to_spatial();
+            joints[i - 1].inertia = snap_inertia(BodyInertia::from_spatial(&(parent + g)));
+        }
     }
 }

@@ -17,6 +17,7 @@ pub mod spatial;
 
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::{JointKind, Robot};
+use rnea::LinkForce;
 use spatial::JointMotion;
 
 /// Input group of the joint positions q.
@@ -71,24 +72,36 @@ pub fn expand(robot: &Robot) -> Dynamics {
         .iter()
         .enumerate()
         .map(|(i, f)| {
+            // The joint variable with its home offset: θ_i + θ₀ or d_i + q_i.
+            let offset = g.constant(f.offset);
+            let angle = g.add(q[i], offset);
             let (sin, cos) = match f.kind {
-                JointKind::Revolute => (g.sin(q[i]), g.cos(q[i])),
+                JointKind::Revolute => (g.sin(angle), g.cos(angle)),
                 JointKind::Prismatic => (zero, zero),
             };
             JointMotion {
                 frame: f,
                 sin,
                 cos,
-                q: q[i],
+                q: angle,
             }
         })
         .collect();
     let no_gravity = [0.0; 3];
     let mass_matrix = crba::crba(&mut g, &motions);
-    let coriolis = rnea::rnea(&mut g, &motions, &qd, &zeros, no_gravity);
-    let gravity = rnea::rnea(&mut g, &motions, &zeros, &zeros, frames.gravity);
-    let inverse_dynamics = rnea::rnea(&mut g, &motions, &qd, &qdd, frames.gravity);
-    let bias = rnea::rnea(&mut g, &motions, &qd, &zeros, frames.gravity);
+    let mut best_rnea = |g: &mut ExprGraph, qd: &[ExprId], qdd: &[ExprId], gravity: [f64; 3]| {
+        let a = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Spatial);
+        let b = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Classical);
+        if g.op_counts(&b).total() < g.op_counts(&a).total() {
+            b
+        } else {
+            a
+        }
+    };
+    let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
+    let gravity = best_rnea(&mut g, &zeros, &zeros, frames.gravity);
+    let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, frames.gravity);
+    let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
     let rhs: Vec<ExprId> = (0..n).map(|i| g.sub(tau[i], bias[i])).collect();
     let forward_dynamics = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
     Dynamics {

@@ -18,6 +18,17 @@ use super::spatial::{Inertia, JointMotion, Spatial, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
 
+/// How the link wrench `F_i = G_i V̇_i − [ad_{V_i}]ᵀ G_i V_i` is written out; the two forms
+/// are equal, and which needs fewer operations depends on the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinkForce {
+    /// Spatial: momentum `G V` and the spatial cross product.
+    Spatial,
+    /// Classical: `n = I ω̇ + ω × I ω + h × a`, `f = m a + ω̇ × h + ω × (ω × h)` with the
+    /// classical acceleration `a = v̇ + ω × v`.
+    Classical,
+}
+
 /// τ for the given symbolic velocities and accelerations (use constant zeros to drop terms)
 /// and gravity `gravity` in {0}.
 pub fn rnea(
@@ -26,6 +37,7 @@ pub fn rnea(
     qd: &[ExprId],
     qdd: &[ExprId],
     gravity: [f64; 3],
+    form: LinkForce,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let zero = g.zero3();
@@ -69,16 +81,36 @@ pub fn rnea(
             JointKind::Prismatic => &mut vdi.lin[2],
         };
         *k = g.add(*k, qdd[i]);
-        // F = G V̇ − [ad_V]ᵀ G V, with −[ad_V]ᵀ (k, l) = (ω × k + v × l, ω × l).
         let gi = Inertia::constant(g, &jm.frame.inertia);
-        let gvd = gi.apply(g, &vdi);
-        let p = gi.apply(g, &vi);
-        let wk = g.cross(vi.ang, p.ang);
-        let vl = g.cross(vi.lin, p.lin);
-        let wl = g.cross(vi.ang, p.lin);
-        let bias_ang = g.add3(wk, vl);
-        let f_ang = g.add3(gvd.ang, bias_ang);
-        let f_lin = g.add3(gvd.lin, wl);
+        let (f_ang, f_lin) = match form {
+            LinkForce::Spatial => {
+                // F = G V̇ − [ad_V]ᵀ G V, with −[ad_V]ᵀ (k, l) = (ω × k + v × l, ω × l).
+                let gvd = gi.apply(g, &vdi);
+                let p = gi.apply(g, &vi);
+                let wk = g.cross(vi.ang, p.ang);
+                let vl = g.cross(vi.lin, p.lin);
+                let wl = g.cross(vi.ang, p.lin);
+                let bias_ang = g.add3(wk, vl);
+                (g.add3(gvd.ang, bias_ang), g.add3(gvd.lin, wl))
+            }
+            LinkForce::Classical => {
+                // The same wrench through the classical acceleration a = v̇ + ω × v of the
+                // frame's origin: n = I ω̇ + ω × I ω + h × a, f = m a + ω̇ × h + ω × (ω × h).
+                let wxv = g.cross(vi.ang, vi.lin);
+                let a = g.add3(vdi.lin, wxv);
+                let iwd = gi.rotational(g, vdi.ang);
+                let iw = gi.rotational(g, vi.ang);
+                let w_iw = g.cross(vi.ang, iw);
+                let hxa = g.cross(gi.h, a);
+                let n1 = g.add3(iwd, w_iw);
+                let ma = g.scale3(gi.m, a);
+                let wdxh = g.cross(vdi.ang, gi.h);
+                let wxh = g.cross(vi.ang, gi.h);
+                let wwh = g.cross(vi.ang, wxh);
+                let f1 = g.add3(ma, wdxh);
+                (g.add3(n1, hxa), g.add3(f1, wwh))
+            }
+        };
         forces.push(Spatial {
             ang: f_ang,
             lin: f_lin,

@@ -370,6 +370,12 @@ impl Inertia {
         }
     }
 
+    /// `I_o ω`.
+    pub fn rotational(&self, g: &mut ExprGraph, w: V3) -> V3 {
+        let s = sym(&self.i);
+        [g.dot(&s[0], &w), g.dot(&s[1], &w), g.dot(&s[2], &w)]
+    }
+
     /// The momentum `G V = (I_o ω + h × v, m v − h × ω)`.
     pub fn apply(&self, g: &mut ExprGraph, v: &Spatial) -> Spatial {
         let s = sym(&self.i);
