@@ -1,0 +1,23 @@
+//! Generates the dynamics of three shipped robots into `OUT_DIR` (f64, `no_std`).
+
+use dynamics_gen::Builder;
+
+fn main() {
+    println!("cargo:rerun-if-changed=build.rs");
+    let robots = [
+        // The UR5 of example-robot-data (URDF).
+        Builder::new("ur5").no_std(true).clone(),
+        // The rotational pendulum of Modern Robotics Exercise 8.4.
+        Builder::new("pendulum").no_std(true).clone(),
+        // The UR5 of the Modern Robotics course, with the gravity of its reference data.
+        Builder::new("mr_ur5")
+            .no_std(true)
+            .gravity([0.0, 0.0, -9.81])
+            .clone(),
+    ];
+    for builder in &robots {
+        if let Err(e) = builder.compile() {
+            panic!("dynamics-gen: {e}");
+        }
+    }
+}
