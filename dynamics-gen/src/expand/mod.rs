@@ -13,6 +13,7 @@ pub mod crba;
 pub mod frames;
 pub mod ldlt;
 pub mod rnea;
+pub mod rnea_classical;
 pub mod spatial;
 
 use crate::expr::{ExprGraph, ExprId, Input};
@@ -89,14 +90,18 @@ pub fn expand(robot: &Robot) -> Dynamics {
         .collect();
     let no_gravity = [0.0; 3];
     let mass_matrix = crba::crba(&mut g, &motions);
-    let mut best_rnea = |g: &mut ExprGraph, qd: &[ExprId], qdd: &[ExprId], gravity: [f64; 3]| {
+    let best_rnea = |g: &mut ExprGraph, qd: &[ExprId], qdd: &[ExprId], gravity: [f64; 3]| {
         let a = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Spatial);
         let b = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Classical);
-        if g.op_counts(&b).total() < g.op_counts(&a).total() {
-            b
-        } else {
-            a
+        let c = rnea_classical::rnea_classical(g, &motions, qd, qdd, gravity);
+        // The cheapest of the equal forms (ties keep the earlier one).
+        let mut best = a;
+        for candidate in [b, c] {
+            if g.op_counts(&candidate).total() < g.op_counts(&best).total() {
+                best = candidate;
+            }
         }
+        best
     };
     let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
     let gravity = best_rnea(&mut g, &zeros, &zeros, frames.gravity);
