@@ -303,6 +303,24 @@ mod tests {
     }
 
     #[test]
+    fn robot_file_is_named_as_given_and_gives_the_file_name() {
+        let dir = temp_dir("file");
+        let robot = dir.join("my_pendulum.toml");
+        std::fs::write(&robot, shipped::get("pendulum").unwrap().text).unwrap();
+        let given = robot.to_str().unwrap().to_string();
+        let mut b = Builder::new(given.clone());
+        b.out_dir(&dir);
+        let code = b.generate().unwrap();
+        assert!(code.contains(&format!("from {given} ")), "{code}");
+        assert!(code.contains("pub struct Pendulum;"));
+        assert_eq!(b.write().unwrap(), dir.join("my_pendulum.rs"));
+        std::fs::write(&robot, "name = ").unwrap();
+        let err = b.generate().unwrap_err().to_string();
+        assert!(err.contains("my_pendulum.toml"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn gravity_override_reaches_the_code() {
         let code = Builder::new("pendulum")
             .gravity([0.0, 0.0, -1.62])

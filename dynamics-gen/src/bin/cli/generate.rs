@@ -1,6 +1,7 @@
 //! `generate` and `stats`.
 
 use super::args::{GenerateArgs, ModelArgs};
+use dynamics_gen::dynamics_model::shipped;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
 use dynamics_gen::Options;
 
@@ -14,8 +15,13 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         nalgebra_path: args.nalgebra_path.clone(),
         load: args.model.load_options(),
     };
-    let code = dynamics_gen::generate_file(&robot, &options, &args.model.robot)
-        .map_err(|e| e.to_string())?;
+    let spec = &args.model.robot;
+    let source = if !std::path::Path::new(spec).is_file() && shipped::get(spec).is_some() {
+        format!("shipped robot `{spec}`")
+    } else {
+        spec.clone()
+    };
+    let code = dynamics_gen::generate_file(&robot, &options, &source).map_err(|e| e.to_string())?;
     match &args.output {
         Some(path) => std::fs::write(path, code)
             .map_err(|e| format!("{}: cannot write the generated file: {e}", path.display())),
