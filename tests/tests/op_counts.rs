@@ -27,6 +27,11 @@ fn inverse_dynamics_beats_featherstones_rnea_count() {
             d.graph.op_counts(&d.forward_dynamics),
         );
         assert!(id.mul < mul_f, "{}: {} mul ≥ {mul_f}", robot.name, id.mul);
-        assert!(id.add_sub < add_f, "{}: {} add ≥ {add_f}", robot.name, id.add_sub);
+        assert!(
+            id.add_sub < add_f,
+            "{}: {} add ≥ {add_f}",
+            robot.name,
+            id.add_sub
+        );
     }
 }

@@ -100,6 +100,16 @@ pub struct JointFrames {
 /// below it (m) to zero, so that the constants fold to exact zeros and ones.
 pub const SNAP: f64 = 1e-12;
 
+/// Common normals whose feet lie further than this (m) from the axes' reference points are
+/// ill-conditioned (nearly parallel axes); such axes are treated as parallel.
+pub const FAR: f64 = 10.0;
+
+/// A pose is taken as DH-shaped only when the snapped DH parameters rebuild it to within
+/// this (rotation entries, and metres); otherwise the joint keeps a general constant
+/// transform. Nearly parallel axes make the common normal ill-conditioned: this check, not
+/// the construction, guarantees the model.
+pub const DH_TOL: f64 = 1e-13;
+
 /// Inertial parameters below this fraction of the largest one are rounding noise: zero.
 pub const INERTIA_SNAP: f64 = 1e-13;
 
@@ -163,14 +173,19 @@ fn dh_frames(lines: &[AxisLine]) -> Vec<Matrix4<f64>> {
         let (origin, x, next_landing) = if i + 1 < n {
             let next = &lines[i + 1];
             let c = z.cross(&next.dir);
-            if c.norm() > 1e-9 {
-                // Closest point of axis i to axis i+1, and its mirror on axis i+1.
-                let w = next.point - point;
-                let s = w.cross(&next.dir).dot(&c) / c.norm_squared();
-                let t = w.cross(z).dot(&c) / c.norm_squared();
+            // Closest point of axis i to axis i+1, and its mirror on axis i+1; for nearly
+            // parallel axes these run off far away (ill-conditioned): treat them as parallel.
+            let w = next.point - point;
+            let c2 = c.norm_squared().max(f64::MIN_POSITIVE);
+            let s = w.cross(&next.dir).dot(&c) / c2;
+            let t = w.cross(z).dot(&c) / c2;
+            if c.norm() > 1e-6 && s.abs() < FAR && t.abs() < FAR {
                 let o = point + z * s;
                 let land = next.point + next.dir * t;
+                // The normal is perpendicular to axis i by construction; re-project so that
+                // rounding in s and t cannot tilt the frame.
                 let gap = land - o;
+                let gap = gap - z * z.dot(&gap);
                 let x = if gap.norm() > 1e-9 {
                     gap.normalize()
                 } else {
@@ -263,7 +278,7 @@ fn dh_parameters(kind: JointKind, x: &Matrix4<f64>) -> Option<(Matrix3<f64>, Vec
     // Check that x really has the DH form.
     let rebuilt_r = rot_x(alpha) * rot_z(theta0);
     let rebuilt_t = Vector3::new(a, -d * sa, d * ca);
-    if (rebuilt_r - r).amax() > 1e-9 || (rebuilt_t - t).amax() > 1e-9 {
+    if (rebuilt_r - r).amax() > DH_TOL || (rebuilt_t - t).amax() > DH_TOL {
         return None;
     }
     match kind {
