@@ -103,6 +103,8 @@ fn main() {
     }
 
     let mut registry = String::new();
+    let mut list = String::new();
+    let mut std_list = String::new();
     let mut modules = String::new();
     for case in &cases {
         let options = Options {
@@ -123,6 +125,10 @@ fn main() {
             m = case.module
         )
         .ok();
+        writeln!(list, "        $mac!({}, {n}, {s});", case.module).ok();
+        if !case.no_std {
+            writeln!(std_list, "        $mac!({}, {n}, {s});", case.module).ok();
+        }
         writeln!(
             registry,
             "    Case {{ module: {m:?}, spec: {spec}, scalar: {s:?}, imp: &{m}::Robot }},",
@@ -135,4 +141,8 @@ fn main() {
         "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n"
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
+    let macro_list = format!(
+        "/// Calls `$mac!(module, n, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, n, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n"
+    );
+    std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
 }

@@ -164,6 +164,8 @@ pub mod generated {
 
 pub use generated::CASES;
 
+include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
+
 /// ‖x − y‖∞ / (‖y‖∞ + atol/rtol): the relative error measure of the acceptance criteria.
 pub fn rel_err(x: &[f64], y: &[f64], atol: f64) -> f64 {
     assert_eq!(x.len(), y.len(), "sizes differ");

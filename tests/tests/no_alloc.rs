@@ -1,0 +1,64 @@
+//! Zero heap allocations per call: a counting global allocator around calls of every
+//! generated function of every generated robot.
+
+use nalgebra::SVector;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::hint::black_box;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+static CHECKED: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards to the system allocator and only counts.
+#[allow(unsafe_code)]
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+macro_rules! no_alloc {
+    ($m:ident, $n:literal, $s:ty) => {{
+        use dynamics_tests::generated::$m::Robot;
+        let q = SVector::<$s, $n>::from_fn(|i, _| 0.3 + 0.1 * i as $s);
+        let qd = SVector::<$s, $n>::from_fn(|i, _| 0.5 - 0.2 * i as $s);
+        let x = SVector::<$s, $n>::from_fn(|i, _| 0.7 * i as $s - 1.0);
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        for _ in 0..3 {
+            black_box(Robot.mass_matrix(black_box(&q)));
+            black_box(Robot.coriolis(black_box(&q), black_box(&qd)));
+            black_box(Robot.gravity(black_box(&q)));
+            black_box(Robot.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&x)));
+            black_box(Robot.forward_dynamics(black_box(&q), black_box(&qd), black_box(&x)));
+        }
+        let after = ALLOCATIONS.load(Ordering::SeqCst);
+        assert_eq!(after - before, 0, "{} allocated", stringify!($m));
+        CHECKED.fetch_add(1, Ordering::SeqCst);
+    }};
+}
+
+#[test]
+fn generated_functions_never_allocate() {
+    dynamics_tests::with_cases!(no_alloc);
+    assert_eq!(CHECKED.load(Ordering::SeqCst), dynamics_tests::CASES.len());
+    // The counter works: a Vec does allocate.
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    black_box(vec![1u8; 16]);
+    assert!(ALLOCATIONS.load(Ordering::SeqCst) > before);
+}

@@ -1,0 +1,66 @@
+//! No panic paths: every generated function of every generated robot, wrapped in a function
+//! marked `#[no_panic]`, which fails to link if the optimiser cannot prove the wrapper never
+//! panics. Meaningful in release builds only:
+//! `cargo test --release -p dynamics-tests --test no_panic`.
+//!
+//! The `no_std` variants are left out: their `libm::sinf`/`libm::sin` argument reduction
+//! holds bounds checks that the optimiser cannot prove unreachable, so `no_panic` rejects
+//! them although the generated code itself has none.
+
+#![cfg(not(debug_assertions))]
+#![allow(missing_docs)]
+
+use nalgebra::{SMatrix, SVector};
+use no_panic::no_panic;
+
+macro_rules! wrappers {
+    ($m:ident, $n:literal, $s:ty) => {
+        pub mod $m {
+            use super::*;
+            use dynamics_tests::generated::$m::Robot;
+            type V = SVector<$s, $n>;
+            #[no_panic]
+            pub fn mass_matrix(q: &V) -> SMatrix<$s, $n, $n> {
+                Robot.mass_matrix(q)
+            }
+            #[no_panic]
+            pub fn coriolis(q: &V, qd: &V) -> V {
+                Robot.coriolis(q, qd)
+            }
+            #[no_panic]
+            pub fn gravity(q: &V) -> V {
+                Robot.gravity(q)
+            }
+            #[no_panic]
+            pub fn inverse_dynamics(q: &V, qd: &V, qdd: &V) -> V {
+                Robot.inverse_dynamics(q, qd, qdd)
+            }
+            #[no_panic]
+            pub fn forward_dynamics(q: &V, qd: &V, tau: &V) -> V {
+                Robot.forward_dynamics(q, qd, tau)
+            }
+            pub fn call() -> $s {
+                let q = V::from_fn(|i, _| 0.1 * i as $s);
+                let m = mass_matrix(&q);
+                let c = coriolis(&q, &q);
+                let g = gravity(&q);
+                let t = inverse_dynamics(&q, &q, &q);
+                let a = forward_dynamics(&q, &q, &t);
+                m[(0, 0)] + c[0] + g[0] + a[0]
+            }
+        }
+    };
+}
+
+dynamics_tests::with_std_cases!(wrappers);
+
+macro_rules! call {
+    ($m:ident, $n:literal, $s:ty) => {
+        assert!($m::call().is_finite());
+    };
+}
+
+#[test]
+fn generated_functions_have_no_panic_path() {
+    dynamics_tests::with_std_cases!(call);
+}
