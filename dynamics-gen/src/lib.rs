@@ -11,6 +11,7 @@ pub mod emit;
 pub mod error;
 pub mod expand;
 pub mod expr;
+pub mod macro_support;
 pub mod options;
 pub mod stats;
 

@@ -1,0 +1,172 @@
+//! The inline grammar against the TOML files of the same robots: one core, identical impls.
+
+use super::*;
+use dynamics_model::{load_file, LoadOptions, Robot};
+use std::path::Path;
+
+fn robots_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots")
+}
+
+fn inline_robot(tokens: TokenStream) -> Robot {
+    match inline::parse(tokens).map(|p| p.robot) {
+        Ok(Ok(r)) => r,
+        Ok(Err(e)) | Err(e) => panic!("{e}"),
+    }
+}
+
+fn inline_errors(tokens: TokenStream) -> Vec<String> {
+    match inline::parse(tokens).map(|p| p.robot) {
+        Ok(Ok(_)) => panic!("expected errors"),
+        Ok(Err(e)) | Err(e) => e.into_iter().map(|e| e.to_string()).collect(),
+    }
+}
+
+fn same_impl(inline: &Robot, file: &str, name: &str) {
+    let from_file = load_file(&robots_dir().join(file), &LoadOptions::default()).unwrap();
+    let options = Options {
+        name: Some(name.into()),
+        ..Options::default()
+    };
+    let a = crate::generate_impl(inline, &options)
+        .unwrap()
+        .impl_block
+        .to_string();
+    let b = crate::generate_impl(&from_file, &options)
+        .unwrap()
+        .impl_block
+        .to_string();
+    assert!(a == b, "impl blocks differ for {file}");
+    // Not vacuous: the robots' numbers are the file's.
+    assert_eq!(inline.m_list(), from_file.m_list());
+    assert_eq!(inline.g_list(), from_file.g_list());
+    assert_eq!(inline.s_list(), from_file.s_list());
+    assert_eq!(inline.joint_names(), from_file.joint_names());
+}
+
+#[test]
+fn pendulum_inline_equals_pendulum_toml() {
+    let robot = inline_robot(quote! {
+        pub struct Pendulum;
+        name: "pendulum",
+        gravity: [0.0, 0.0, -10.0],
+        joint revolute joint1 {
+            screw: [0, 0, 1, 0, 0, 0],
+            link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+        },
+        joint revolute joint2 {
+            screw: [1, 0, 0, 0, 0, 0],
+            link pendulum { home: { xyz: [0, 0, -1] }, mass: 2.0, inertia: [4, 4, 0, 0, 0, 0] },
+        },
+        end_effector bob { home: { xyz: [0, 0, 0] } },
+    });
+    same_impl(&robot, "pendulum.toml", "Pendulum");
+}
+
+/// The UR5 of mr_ur5.toml, with every home as a 4×4 matrix and the screw axes as `screw`
+/// (v = −ω × q computed by hand from the file's axis and point).
+#[test]
+fn ur5_inline_equals_mr_ur5_toml() {
+    let robot = inline_robot(quote! {
+        pub struct MrUr5;
+        gravity: [0, 0, -9.81],
+        joint revolute shoulder_pan_joint {
+            screw: [0, 0, 1, 0, 0, 0],
+            link shoulder_link {
+                home: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.089159], [0, 0, 0, 1]],
+                mass: 3.7, inertia: [0.010267495893, 0.010267495893, 0.00666, 0, 0, 0],
+            },
+        },
+        joint revolute shoulder_lift_joint {
+            screw: [0, 1, 0, -0.089159, 0, 0],
+            link upper_arm_link {
+                home: [[0, 0, 1, 0.28], [0, 1, 0, 0.13585], [-1, 0, 0, 0], [0, 0, 0, 1]],
+                mass: 8.393, inertia: [0.22689067591, 0.22689067591, 0.0151074, 0, 0, 0],
+            },
+        },
+        joint revolute elbow_joint {
+            screw: [0, 1, 0, -0.089159, 0, 0.425],
+            link forearm_link {
+                home: [[1, 0, 0, 0], [0, 1, 0, -0.1197], [0, 0, 1, 0.395], [0, 0, 0, 1]],
+                mass: 2.275, inertia: [0.049443313556, 0.049443313556, 0.004095, 0, 0, 0],
+            },
+        },
+        joint revolute wrist_1_joint {
+            screw: [0, 1, 0, -0.089159, 0, 0.81725],
+            link wrist_1_link {
+                home: [[0, 0, 1, 0], [0, 1, 0, 0], [-1, 0, 0, 0.14225], [0, 0, 0, 1]],
+                mass: 1.219, inertia: [0.111172755531, 0.111172755531, 0.21942, 0, 0, 0],
+            },
+        },
+        joint revolute wrist_2_joint {
+            screw: [0, 0, -1, -0.10915, 0.81725, 0],
+            link wrist_2_link {
+                home: [[1, 0, 0, 0], [0, 1, 0, 0.093], [0, 0, 1, 0], [0, 0, 0, 1]],
+                mass: 1.219, inertia: [0.111172755531, 0.111172755531, 0.21942, 0, 0, 0],
+            },
+        },
+        joint revolute wrist_3_joint {
+            screw: [0, 1, 0, 0.005491, 0, 0.81725],
+            link wrist_3_link {
+                home: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.09465], [0, 0, 0, 1]],
+                mass: 0.1879, inertia: [0.0171364731454, 0.0171364731454, 0.033822, 0, 0, 0],
+            },
+        },
+        end_effector ee_link {
+            home: [[1, 0, 0, 0], [0, 0, 1, 0.0823], [0, -1, 0, 0], [0, 0, 0, 1]],
+        },
+    });
+    same_impl(&robot, "mr_ur5.toml", "MrUr5");
+}
+
+#[test]
+fn flat_link_keys_and_axis_point_equal_the_nested_form() {
+    let flat = inline_robot(quote! {
+        pub struct P;
+        joint revolute a { axis: [0, 0, 2], point: [1, 2, 3], home: { rpy: [0, FRAC_PI_2, 0] },
+            shape: { cylinder: [0.05, 2 * 0.2] }, density: 2700 },
+    });
+    let nested = inline_robot(quote! {
+        pub struct P;
+        joint revolute a { screw: [0, 0, 1, 2, -1, 0], link link1 {
+            home: { xyz: [0, 0, 0], rpy: [0, 1.5707963267948966, 0] },
+            shape: { cylinder: [0.05, 0.4] }, density: 2700.0 } },
+    });
+    assert_eq!(
+        flat,
+        Robot {
+            source: flat.source.clone(),
+            ..nested
+        }
+    );
+    let m = 2700.0 * core::f64::consts::PI * 0.05 * 0.05 * 0.4;
+    assert!((flat.links[0].inertia.mass() - m).abs() < 1e-12 * m);
+}
+
+#[test]
+fn errors_are_accumulated_and_name_the_field() {
+    let errors = inline_errors(quote! {
+        pub struct Bad;
+        gravity: [0, 0, -9.81, 1],
+        joint revolute { screw: [0, 0, 1, 0, 0], home: {}, mass: -1, inertia: [1, 1, 1, 0, 0, 0] },
+        joint revolute { axis: [0, 0, 1], point: [0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 3, 0, 0, 0], masss: 1 },
+    });
+    let all = errors.join("\n");
+    assert!(all.contains("unknown field `masss`"), "{all}");
+    // The first pass stops at key-level errors; fix those and the model's errors appear.
+    let errors = inline_errors(quote! {
+        pub struct Bad;
+        joint revolute { screw: [0, 0, 1, 0, 0], home: {}, mass: -1, inertia: [1, 1, 1, 0, 0, 0] },
+        joint revolute { axis: [0, 0, 1], point: [0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 3, 0, 0, 0] },
+    });
+    let all = errors.join("\n");
+    assert!(
+        all.contains("joint `joint1`, `screw`: expected 6 numbers, found 5"),
+        "{all}"
+    );
+    assert!(all.contains("link `link1`, `mass`"), "{all}");
+    assert!(
+        all.contains("link `link2`, `inertia`") && all.contains("triangle"),
+        "{all}"
+    );
+}
