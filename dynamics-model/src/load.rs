@@ -47,7 +47,12 @@ pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
         return load_file(path, options);
     }
     if let Some(shipped) = crate::shipped::get(spec) {
-        return from_str(shipped.text, shipped.format, shipped.file, options);
+        let robot = parse(shipped.text, shipped.format, shipped.file, options)?;
+        let errors = crate::validate::validate_with(&robot, !shipped.axes_as_given);
+        if !errors.is_empty() {
+            return Err(ModelError::Invalid(errors).in_file(shipped.file));
+        }
+        return Ok(robot);
     }
     if Format::from_path(path).is_some() || spec.contains('/') || spec.contains('\\') {
         return Err(ModelError::Io {
@@ -85,6 +90,18 @@ pub fn from_str(
     file: &str,
     options: &LoadOptions,
 ) -> Result<Robot, ModelError> {
+    let robot = parse(text, format, file, options)?;
+    robot.validate().map_err(|e| e.in_file(file))?;
+    Ok(robot)
+}
+
+/// Parses (without the physical validation) and applies the gravity override.
+fn parse(
+    text: &str,
+    format: Format,
+    file: &str,
+    options: &LoadOptions,
+) -> Result<Robot, ModelError> {
     let mut robot = match format {
         Format::Toml => {
             if options.tip.is_some() || !options.lock.is_empty() {
@@ -100,6 +117,5 @@ pub fn from_str(
     if let Some(g) = options.gravity {
         robot.gravity = g;
     }
-    robot.validate().map_err(|e| e.in_file(file))?;
     Ok(robot)
 }

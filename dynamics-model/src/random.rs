@@ -7,7 +7,7 @@
 //! The generator is a SplitMix64 stream: the same seed gives the same robot on every host.
 
 use crate::inertia::SpatialInertia;
-use crate::lie::{exp6, rp_to_trans, rotation, twist};
+use crate::lie::{exp6, rotation, rp_to_trans, twist};
 use crate::robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot};
 use nalgebra::{Matrix3, Matrix4, Vector3};
 

@@ -30,6 +30,13 @@ pub const INERTIA_TOL: f64 = 1e-9;
 
 /// Every rule broken by `robot`, in chain order (empty when the robot is valid).
 pub fn validate(robot: &Robot) -> Vec<Invalid> {
+    validate_with(robot, true)
+}
+
+/// As [`validate`], but with `unit_axes = false` a screw axis is only required to be finite:
+/// the book's functions accept any `S_i` (its three-link example has `|ω| = √2`), and so does
+/// the reference implementation. The generator always requires unit axes.
+pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
     let mut errors = Vec::new();
     if robot.joints.len() != robot.links.len() {
         errors.push(Invalid::new(
@@ -57,7 +64,16 @@ pub fn validate(robot: &Robot) -> Vec<Invalid> {
             index: Some(i),
             name: j.name.clone(),
         };
-        errors.extend(check_screw(subject, j.kind, &j.screw));
+        if unit_axes {
+            errors.extend(check_screw(subject, j.kind, &j.screw));
+        } else if j.screw.iter().any(|x| !x.is_finite()) {
+            errors.push(Invalid::new(
+                subject,
+                "screw",
+                format!("not finite: {:?}", j.screw.as_slice()),
+                "give six finite numbers (ω, v)",
+            ));
+        }
         if let Some(l) = &j.limits {
             if !(l.lower.is_finite() && l.upper.is_finite()) || l.lower > l.upper {
                 errors.push(Invalid::new(

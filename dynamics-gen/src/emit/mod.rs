@@ -37,7 +37,7 @@ pub fn prepare(robot: &Robot, options: &Options) -> Result<Robot, Error> {
     if let Some(g) = options.load.gravity {
         robot.gravity = g;
     }
-    robot.validate()?;
+    robot.validate().map_err(|e| e.in_file(&robot.source))?;
     if robot.dof() == 0 {
         return Err(Error::NoJoints {
             robot: robot.name.clone(),
