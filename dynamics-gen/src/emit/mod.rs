@@ -225,7 +225,8 @@ fn allow_attrs() -> TokenStream {
             clippy::neg_multiply,
             clippy::suboptimal_flops,
             unused_parens,
-            non_snake_case
+            non_snake_case,
+            dead_code
         )]
     }
 }

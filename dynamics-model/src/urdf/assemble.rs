@@ -66,14 +66,29 @@ pub fn robot(
         }
     }
     let mut inertia = vec![SpatialInertia::zero(); n];
+    let mut errors = Vec::new();
     for l in 0..n_links {
         let b = body[l];
         if b == 0 || (links[l].mass == 0.0 && links[l].inertia.amax() == 0.0) {
             continue; // the fixed base never moves; massless links add nothing
         }
+        // Each URDF link of a moving body must be a physical rigid body on its own, so that
+        // an error names the link as the file has it (merged bodies would hide it).
+        errors.extend(crate::validate::check_mass_and_inertia(
+            crate::error::Subject::Link {
+                index: None,
+                name: tree.link_names[l].clone(),
+            },
+            "inertial.inertia",
+            links[l].mass,
+            &links[l].inertia,
+        ));
         let t_bc = pose[l] * links[l].com_frame;
         inertia[b - 1] =
             inertia[b - 1] + SpatialInertia::from_com_frame(links[l].mass, links[l].inertia, &t_bc);
+    }
+    if !errors.is_empty() {
+        return Err(errors);
     }
     let tip_link = tip.unwrap_or(tree.ends[last].1);
     if body[tip_link] != n {

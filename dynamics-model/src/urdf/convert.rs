@@ -16,7 +16,6 @@ use super::origin::origin_transform;
 use crate::error::{Invalid, Subject};
 use crate::lie::{exp6, twist};
 use crate::robot::{JointKind, JointLimits};
-use crate::validate::check_mass_and_inertia;
 use nalgebra::{Matrix3, Matrix4, Vector3};
 use std::collections::HashMap;
 
@@ -341,14 +340,9 @@ pub fn link(l: &urdf_rs::Link) -> Result<LinkModel, Vec<Invalid>> {
             "give finite numbers in kg·m²",
         ));
     }
-    if errors.is_empty() {
-        errors.extend(check_mass_and_inertia(
-            subject(),
-            "inertial.inertia",
-            mass,
-            &tensor,
-        ));
-    }
+    // The physical checks (positive semidefinite, triangle inequality) are made when the
+    // link is assembled into a moving body: links on the fixed base never move, and some real
+    // files carry meaningless inertias there (Pinocchio loads them too).
     if !errors.is_empty() {
         return Err(errors);
     }

@@ -18,10 +18,15 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             Some(l) => format!("limits [{}, {}] {unit}", l.lower, l.upper),
             None => "unlimited".to_string(),
         };
+        // An unlimited revolute joint is URDF's `continuous` (q is the angle).
+        let kind = match (j.kind, &j.limits) {
+            (JointKind::Revolute, None) => "continuous",
+            (kind, _) => kind.as_str(),
+        };
         println!(
-            "{:<width$}  {:<9}  S = ({})  {limits}",
+            "{:<width$}  {:<10}  S = ({})  {limits}",
             j.name,
-            j.kind.as_str(),
+            kind,
             s.join(", ")
         );
     }
