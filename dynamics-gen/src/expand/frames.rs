@@ -270,8 +270,8 @@ fn rot_z(a: f64) -> Matrix3<f64> {
 fn dh_parameters(kind: JointKind, x: &Matrix4<f64>) -> Option<(Matrix3<f64>, Vector3<f64>, f64)> {
     let r = rotation(x);
     let t = translation(x);
-    let alpha = snap_angle(f64::atan2(-r[(1, 2)], r[(2, 2)]));
-    let theta0 = snap_angle(f64::atan2(-r[(0, 1)], r[(0, 0)]));
+    let alpha = snap_angle(libm::atan2(-r[(1, 2)], r[(2, 2)]));
+    let theta0 = snap_angle(libm::atan2(-r[(0, 1)], r[(0, 0)]));
     let (sa, ca) = sin_cos(alpha);
     let a = snap_length(t[0]);
     let d = snap_length(t[2] * ca - t[1] * sa);
