@@ -1,0 +1,92 @@
+//! Generated code against the generic recursive reference implementation, side by side in
+//! one run: `cargo bench -p dynamics-tests --bench dynamics`.
+//!
+//! The reference allocates and loops (nalgebra `DMatrix`, one iteration per joint); the
+//! generated functions are straight-line code over `SVector`s. Ratios measured in the same
+//! run are what to compare, never absolute times from different runs.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use dynamics_model::LoadOptions;
+use nalgebra::{SVector, Vector6};
+use std::hint::black_box;
+
+macro_rules! bench_robot {
+    ($c:expr, $label:literal, $m:ident, $n:literal, $robot:expr) => {{
+        use dynamics_tests::generated::$m::Robot as Gen;
+        let robot = $robot;
+        let q = SVector::<f64, $n>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
+        let qd = SVector::<f64, $n>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
+        let qdd = SVector::<f64, $n>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
+        let tau = Gen.inverse_dynamics(&q, &qd, &qdd);
+        let (qs, qds, qdds, taus) = (q.as_slice(), qd.as_slice(), qdd.as_slice(), tau.as_slice());
+        let g = robot.gravity;
+        let z = Vector6::zeros();
+        let mut group = $c.benchmark_group($label);
+        group.bench_function("generated/inverse_dynamics", |b| {
+            b.iter(|| Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&qdd)))
+        });
+        group.bench_function("reference/inverse_dynamics", |b| {
+            b.iter(|| {
+                dynamics_reference::inverse_dynamics(
+                    &robot,
+                    black_box(qs),
+                    black_box(qds),
+                    black_box(qdds),
+                    &g,
+                    &z,
+                )
+            })
+        });
+        group.bench_function("generated/mass_matrix", |b| {
+            b.iter(|| Gen.mass_matrix(black_box(&q)))
+        });
+        group.bench_function("reference/mass_matrix", |b| {
+            b.iter(|| dynamics_reference::mass_matrix(&robot, black_box(qs)))
+        });
+        group.bench_function("generated/gravity", |b| {
+            b.iter(|| Gen.gravity(black_box(&q)))
+        });
+        group.bench_function("generated/coriolis", |b| {
+            b.iter(|| Gen.coriolis(black_box(&q), black_box(&qd)))
+        });
+        group.bench_function("generated/forward_dynamics", |b| {
+            b.iter(|| Gen.forward_dynamics(black_box(&q), black_box(&qd), black_box(&tau)))
+        });
+        group.bench_function("reference/forward_dynamics", |b| {
+            b.iter(|| {
+                dynamics_reference::forward_dynamics(
+                    &robot,
+                    black_box(qs),
+                    black_box(qds),
+                    black_box(taus),
+                    &g,
+                    &z,
+                )
+            })
+        });
+        group.finish();
+    }};
+}
+
+fn benches(c: &mut Criterion) {
+    let data = dynamics_tests::data_dir().join("robots");
+    let load = |name: &str, tip: &str| {
+        let options = LoadOptions {
+            tip: Some(tip.to_string()),
+            ..Default::default()
+        };
+        dynamics_model::load_file(&data.join(format!("{name}.urdf")), &options).expect("loads")
+    };
+    bench_robot!(c, "ur5", urdf_ur5, 6, load("ur5", "tool0"));
+    bench_robot!(c, "panda", urdf_panda, 7, load("panda", "panda_hand_tcp"));
+    bench_robot!(c, "rand7", urdf_rand7, 7, load("rand7", "ee_link"));
+}
+
+criterion_group! {
+    name = dynamics;
+    config = Criterion::default()
+        .warm_up_time(std::time::Duration::from_millis(300))
+        .measurement_time(std::time::Duration::from_secs(1));
+    targets = benches
+}
+criterion_main!(dynamics);
