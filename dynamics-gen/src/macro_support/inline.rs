@@ -9,7 +9,9 @@
 use super::schema::{self, Type, BODY_KEYS, HOME, JOINT_KEYS, ROBOT_KEYS, SHAPES};
 use super::spans::{Part, SpanMap};
 use super::value::{parse_entries, parse_value, split_commas, Entry, Errors, Kind, Value};
-use dynamics_model::{ModelError, Robot};
+use dynamics_model::validate::{check_home, check_screw};
+use dynamics_model::{Invalid, JointKind, ModelError, Robot, Subject};
+use nalgebra::{Matrix4, Vector6};
 use proc_macro2::{Delimiter, Ident, TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::parse::{ParseStream, Parser};
@@ -83,6 +85,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     let mut joints = Vec::new();
     let mut end_effector: Option<Table> = None;
     let mut seen = Vec::new();
+    let mut early = Vec::new();
     for item in items {
         match item {
             Item::Entry(e) => {
@@ -98,7 +101,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
             Item::Block(b) => match b.keyword.to_string().as_str() {
                 "joint" => {
                     let i = joints.len();
-                    joints.push(Toml::Table(joint(i, b, &mut spans, &mut errors)));
+                    joints.push(Toml::Table(joint(i, b, &mut spans, &mut early, &mut errors)));
                 }
                 "end_effector" => {
                     if end_effector.is_some() {
@@ -125,6 +128,11 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     if let Some(ee) = end_effector {
         doc.insert("end_effector".into(), Toml::Table(ee));
     }
+    if errors.any() {
+        for inv in &early {
+            errors.push(spans.error(inv));
+        }
+    }
     if let Some(e) = errors.take() {
         return Err(e);
     }
@@ -132,22 +140,34 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
         .map_err(|e| syn::Error::new_spanned(ident, format!("internal error in robot!: {e}")))?;
     let file = format!("robot! {ident}");
     let robot = dynamics_model::toml_format::from_str(&text, &file)
-        .map_err(|e| model_error(&spans, &e, &text))?;
+        .map_err(|e| model_error(&spans, &e, &early, &text))?;
     if let Err(e) = robot.validate() {
-        return Err(model_error(&spans, &e, &text));
+        return Err(model_error(&spans, &e, &early, &text));
     }
     Ok(robot)
 }
 
-/// A model error as compile errors on the fields it names.
-fn model_error(spans: &SpanMap, e: &ModelError, text: &str) -> syn::Error {
+/// A model error as compile errors on the fields it names, with the `early` checks (those
+/// the model could not reach because of another error) added once.
+fn model_error(spans: &SpanMap, e: &ModelError, early: &[Invalid], text: &str) -> syn::Error {
     match e {
         ModelError::Invalid(list) => {
             let mut errors = Errors::default();
-            for inv in list {
-                let mut inv = inv.clone();
-                inv.file = None;
-                errors.push(spans.error(&inv));
+            let mut all: Vec<Invalid> = list
+                .iter()
+                .cloned()
+                .map(|mut inv| {
+                    inv.file = None;
+                    inv
+                })
+                .collect();
+            for inv in early {
+                if !all.contains(inv) {
+                    all.push(inv.clone());
+                }
+            }
+            for inv in &all {
+                errors.push(spans.error(inv));
             }
             errors
                 .take()
@@ -248,7 +268,13 @@ fn block_name(args: &[TokenTree], what: &str, errors: &mut Errors) -> Option<Str
 }
 
 /// One `joint KIND NAME { … }`: the joint's table, with its link.
-fn joint(i: usize, b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table {
+fn joint(
+    i: usize,
+    b: Block,
+    spans: &mut SpanMap,
+    early: &mut Vec<Invalid>,
+    errors: &mut Errors,
+) -> Table {
     let part = Part::Joint(i);
     spans.insert(part.clone(), "", b.header.clone());
     let mut t = Table::new();
@@ -387,13 +413,60 @@ fn joint(i: usize, b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table 
         errors.at(
             spans.locate(&link_part, "").clone(),
             format!(
-                "missing field `home` of link {}: give `home: {{ xyz: [x, y, z], rpy: [r, p, y] }}` or a 4×4 matrix, the pose M_{{i−1,i}} of the link frame in the previous one",
-                i + 1
+                "link `{}`: missing field `home`; give `home: {{ xyz: [x, y, z], rpy: [r, p, y] }}` or a 4×4 matrix, the pose M_{{i−1,i}} of the link frame in the previous one",
+                link.get("name").and_then(Toml::as_str).unwrap_or_default()
             ),
         );
     }
+    if !t.contains_key("screw") && !t.contains_key("axis") {
+        errors.at(
+            &b.header,
+            format!(
+                "joint `{}`: missing field `screw`; give `screw: [ωx, ωy, ωz, vx, vy, vz]` in {{0}}, or `axis: [x, y, z]` (with `point: [x, y, z]` on it for a revolute joint)",
+                t.get("name").and_then(Toml::as_str).unwrap_or_default()
+            ),
+        );
+    }
+    early_checks(i, &t, &link, early);
     t.insert("link".into(), Toml::Table(link));
     t
+}
+
+/// The model's checks of a written `screw` and 4×4 `home`, run on the numbers as written,
+/// so that they are reported even when another error stops the robot from being built.
+fn early_checks(i: usize, joint: &Table, link: &Table, early: &mut Vec<Invalid>) {
+    let floats =
+        |v: &Toml| -> Option<Vec<f64>> { v.as_array()?.iter().map(Toml::as_float).collect() };
+    let name = |t: &Table| {
+        t.get("name")
+            .and_then(Toml::as_str)
+            .unwrap_or("")
+            .to_string()
+    };
+    let kind = match joint.get("type").and_then(Toml::as_str) {
+        Some("prismatic") => JointKind::Prismatic,
+        _ => JointKind::Revolute,
+    };
+    if let Some(s) = joint.get("screw").and_then(floats) {
+        if let Ok(s) = <[f64; 6]>::try_from(s.as_slice()) {
+            let subject = Subject::Joint {
+                index: Some(i),
+                name: name(joint),
+            };
+            early.extend(check_screw(subject, kind, &Vector6::from(s)));
+        }
+    }
+    if let Some(rows) = link.get("home").and_then(Toml::as_array) {
+        let rows: Option<Vec<Vec<f64>>> = rows.iter().map(floats).collect();
+        if let Some(rows) = rows.filter(|r| r.len() == 4 && r.iter().all(|r| r.len() == 4)) {
+            let t = Matrix4::from_fn(|r, c| rows[r][c]);
+            let subject = Subject::Link {
+                index: Some(i),
+                name: name(link),
+            };
+            early.extend(check_home(subject, "home", &t));
+        }
+    }
 }
 
 /// A link key (`home` or an inertial key) into `table`; `prefix` is `body[..].` for bodies.

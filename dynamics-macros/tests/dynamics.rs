@@ -1,0 +1,170 @@
+//! Macro-generated dynamics against the reference implementation (dynamics-reference) on the
+//! shipped robots, and the inline pendulum against its closed forms (seed case §4.1).
+
+use dynamics_macros::Dynamics;
+use dynamics_model::{load_file, LoadOptions, Robot};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector2, Vector6};
+use std::path::Path;
+
+#[derive(Dynamics)]
+#[dynamics(file = "../robots/ur5.urdf")]
+struct Ur5;
+
+#[derive(Dynamics)]
+#[dynamics(file = "../robots/mr_ur5.toml")]
+struct MrUr5;
+
+#[derive(Dynamics)]
+#[dynamics(file = "../robots/rand7.toml")]
+struct Rand7;
+
+#[derive(Dynamics)]
+#[dynamics(file = "../tests/data/robots/panda.urdf")]
+struct Panda;
+
+dynamics_macros::robot! {
+    /// robots/pendulum.toml, inline.
+    pub struct Pendulum;
+    gravity: [0.0, 0.0, -10.0],
+    joint revolute joint1 {
+        screw: [0, 0, 1, 0, 0, 0],
+        link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+    },
+    joint revolute joint2 {
+        screw: [1, 0, 0, 0, 0, 0],
+        link pendulum { home: { xyz: [0, 0, -1] }, mass: 2.0, inertia: [4, 4, 0, 0, 0, 0] },
+    },
+    end_effector bob { home: { xyz: [0, 0, 0] } },
+}
+
+fn load(file: &str) -> Robot {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(file);
+    load_file(&path, &LoadOptions::default()).unwrap()
+}
+
+/// ‖x − y‖∞ / (‖y‖∞ + 1e-3), asserting the project's tolerance.
+fn check(x: &[f64], y: &[f64], what: &str) -> f64 {
+    assert_eq!(x.len(), y.len());
+    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = x
+        .iter()
+        .zip(y)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(
+        err <= 1e-9 * scale + 1e-12,
+        "{what}: error {err:e} at scale {scale:e}"
+    );
+    err / scale.max(1e-300)
+}
+
+/// Deterministic pseudo-random numbers in [−1, 1).
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+    fn vector<const N: usize>(&mut self, scale: f64) -> SVector<f64, N> {
+        SVector::from_fn(|_, _| scale * self.next())
+    }
+}
+
+macro_rules! compare {
+    ($name:ident, $ty:ident, $file:expr, $n:literal) => {
+        #[test]
+        fn $name() {
+            let robot = load($file);
+            let g = robot.gravity;
+            let mut rng = Lcg(17);
+            let mut worst: f64 = 0.0;
+            for _ in 0..5 {
+                let q: SVector<f64, $n> = rng.vector(3.0);
+                let qd: SVector<f64, $n> = rng.vector(2.0);
+                let qdd: SVector<f64, $n> = rng.vector(2.0);
+                let tau: SVector<f64, $n> = rng.vector(20.0);
+                let m: SMatrix<f64, $n, $n> = $ty.mass_matrix(&q);
+                let m_ref: DMatrix<f64> = dynamics_reference::mass_matrix(&robot, q.as_slice());
+                worst = worst.max(check(m.as_slice(), m_ref.as_slice(), "M"));
+                let c_ref: DVector<f64> =
+                    dynamics_reference::vel_quadratic_forces(&robot, q.as_slice(), qd.as_slice());
+                worst = worst.max(check(
+                    $ty.coriolis(&q, &qd).as_slice(),
+                    c_ref.as_slice(),
+                    "c",
+                ));
+                let g_ref = dynamics_reference::gravity_forces(&robot, q.as_slice(), &g);
+                worst = worst.max(check($ty.gravity(&q).as_slice(), g_ref.as_slice(), "g"));
+                let id_ref = dynamics_reference::inverse_dynamics(
+                    &robot,
+                    q.as_slice(),
+                    qd.as_slice(),
+                    qdd.as_slice(),
+                    &g,
+                    &Vector6::zeros(),
+                );
+                worst = worst.max(check(
+                    $ty.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+                    id_ref.as_slice(),
+                    "ID",
+                ));
+                let fd_ref = dynamics_reference::forward_dynamics(
+                    &robot,
+                    q.as_slice(),
+                    qd.as_slice(),
+                    tau.as_slice(),
+                    &g,
+                    &Vector6::zeros(),
+                )
+                .unwrap();
+                worst = worst.max(check(
+                    $ty.forward_dynamics(&q, &qd, &tau).as_slice(),
+                    fd_ref.as_slice(),
+                    "FD",
+                ));
+            }
+            assert_eq!($ty::JOINT_NAMES.to_vec(), robot.joint_names());
+            eprintln!("{}: worst relative error {worst:e}", $file);
+        }
+    };
+}
+
+compare!(ur5_urdf_matches_reference, Ur5, "robots/ur5.urdf", 6);
+compare!(mr_ur5_matches_reference, MrUr5, "robots/mr_ur5.toml", 6);
+compare!(rand7_matches_reference, Rand7, "robots/rand7.toml", 7);
+compare!(
+    panda_matches_reference,
+    Panda,
+    "tests/data/robots/panda.urdf",
+    7
+);
+compare!(
+    inline_pendulum_matches_reference,
+    Pendulum,
+    "robots/pendulum.toml",
+    2
+);
+
+/// Seed case §4.1: M = [[8 + 6 s2², 2 c2], [2 c2, 6]],
+/// c = (12 s2 c2 q̇1 q̇2 − 2 s2 q̇2², −6 s2 c2 q̇1²), g = (0, 20 s2).
+#[test]
+fn inline_pendulum_matches_closed_forms() {
+    let mut rng = Lcg(5);
+    for _ in 0..10 {
+        let q: Vector2<f64> = rng.vector(3.0);
+        let qd: Vector2<f64> = rng.vector(2.0);
+        let (s2, c2) = q[1].sin_cos();
+        let m = [8.0 + 6.0 * s2 * s2, 2.0 * c2, 2.0 * c2, 6.0];
+        check(Pendulum.mass_matrix(&q).as_slice(), &m, "M");
+        let c = [
+            12.0 * s2 * c2 * qd[0] * qd[1] - 2.0 * s2 * qd[1] * qd[1],
+            -6.0 * s2 * c2 * qd[0] * qd[0],
+        ];
+        check(Pendulum.coriolis(&q, &qd).as_slice(), &c, "c");
+        check(Pendulum.gravity(&q).as_slice(), &[0.0, 20.0 * s2], "g");
+    }
+    assert_eq!(Pendulum::DOF, 2);
+    assert_eq!(Pendulum::JOINT_NAMES, ["joint1", "joint2"]);
+}

@@ -1,0 +1,5 @@
+#[derive(dynamics_macros::Dynamics)]
+#[dynamics(file = "robots/ur5.urdf", method = "lagrangian")]
+pub struct Ur5;
+
+fn main() {}

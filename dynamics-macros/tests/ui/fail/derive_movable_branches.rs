@@ -1,0 +1,5 @@
+#[derive(dynamics_macros::Dynamics)]
+#[dynamics(file = "dynamics-macros/tests/ui/fixtures/branches.urdf")]
+pub struct TwoArms;
+
+fn main() {}

@@ -1,0 +1,5 @@
+#[derive(dynamics_macros::Dynamics)]
+#[dynamics(file = "dynamics-macros/tests/ui/fixtures/malformed.toml")]
+pub struct Malformed;
+
+fn main() {}
