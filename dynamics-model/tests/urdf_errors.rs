@@ -129,7 +129,7 @@ fn movable_branches_name_the_link_and_suggest_lock() {
             "trees are not supported",
             "`ja`: ja, jc",
             "`jb`: jb",
-            "--lock jb=0",
+            "lock jb=0",
         ],
     );
     // Keeping the other branch: lock ja and jc (ja at a quarter turn).

@@ -174,7 +174,10 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
                 "a movable joint that mimics joint `{}` is not supported (it is not an independent joint)",
                 j.mimic.as_ref().map_or("", |m| m.joint.as_str())
             ),
-            format!("lock it at a value with `--lock {}=VALUE`, or make it fixed", j.name),
+            format!(
+                "lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), or make it fixed",
+                j.name
+            ),
         ));
     }
     let a = Vector3::from(j.axis.xyz.0);

@@ -286,7 +286,7 @@ impl Tree {
             .iter()
             .enumerate()
             .filter(|(b, _)| *b != keep)
-            .flat_map(|(_, (_, m))| m.iter().map(|&k| format!("--lock {}=0", joint_names[k])))
+            .flat_map(|(_, (_, m))| m.iter().map(|&k| format!("{}=0", joint_names[k])))
             .collect();
         Invalid::new(
             Subject::Link {
@@ -301,9 +301,9 @@ impl Tree {
                 list.join("; ")
             ),
             format!(
-                "keep one branch and fix the joints of the others at a value with `--lock JOINT=VALUE` (LoadOptions::lock), e.g. to keep the branch through `{}`: {}",
+                "keep one branch and lock the joints of the others at a value (CLI `--lock JOINT=VALUE`, Builder `.lock(JOINT, VALUE)`, derive `lock(JOINT = VALUE)`), e.g. to keep the branch through `{}` lock {}",
                 joint_names[branches[keep].0],
-                locks.join(" ")
+                locks.join(", ")
             ),
         )
     }
