@@ -118,7 +118,17 @@ pub fn rnea(
         v = vi;
         vd = vdi;
     }
-    // Backward pass: accumulate wrenches toward the base; τ_i = A_iᵀ F_i.
+    backward_pass(g, joints, &forces)
+}
+
+/// The backward pass shared by both Newton–Euler forms: accumulate the link wrenches toward
+/// the base, `F_i = F_i^link + [Ad_{T_{i+1,i}}]ᵀ F_{i+1}`, and read `τ_i = A_iᵀ F_i`.
+pub fn backward_pass(
+    g: &mut ExprGraph,
+    joints: &[JointMotion<'_>],
+    forces: &[Spatial],
+) -> Vec<ExprId> {
+    let n = joints.len();
     let mut tau = vec![g.zero(); n];
     let mut child: Option<Spatial> = None;
     for i in (0..n).rev() {

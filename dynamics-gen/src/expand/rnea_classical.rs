@@ -17,18 +17,9 @@
 //!
 //! with `ω_0 = ω̇_0 = 0` and `a_0 = −g`: gravity is an upward acceleration of the base.
 
-use super::spatial::{Inertia, JointMotion, Spatial, VectorOps, V3};
+use super::spatial::{rot_z_t, Inertia, JointMotion, Spatial, VectorOps, V3};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
-
-/// `Rot_z(−θ) a = (c a_x + s a_y, −s a_x + c a_y, a_z)`.
-fn rot_z_t(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
-    let x1 = g.mul(c, a[0]);
-    let x2 = g.mul(s, a[1]);
-    let y1 = g.mul(c, a[1]);
-    let y2 = g.mul(s, a[0]);
-    [g.add(x1, x2), g.sub(y1, y2), a[2]]
-}
 
 /// `ω × (ω × r) = ω (ω·r) − r |ω|²`, with `|ω|²` given (it is carried along the chain).
 fn double_cross(g: &mut ExprGraph, w: V3, w_sq: ExprId, r: V3) -> V3 {
@@ -115,20 +106,5 @@ pub fn rnea_classical(
             lin: g.add3(f1, wwh),
         });
     }
-    let mut tau = vec![g.zero(); n];
-    let mut child: Option<Spatial> = None;
-    for i in (0..n).rev() {
-        let mut f = forces[i];
-        if let Some(fc) = child {
-            let fp = joints[i + 1].force_to_parent(g, fc);
-            f.ang = g.add3(f.ang, fp.ang);
-            f.lin = g.add3(f.lin, fp.lin);
-        }
-        tau[i] = match joints[i].frame.kind {
-            JointKind::Revolute => f.ang[2],
-            JointKind::Prismatic => f.lin[2],
-        };
-        child = Some(f);
-    }
-    tau
+    super::rnea::backward_pass(g, joints, &forces)
 }

@@ -151,7 +151,7 @@ fn rot_z(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
 }
 
 /// `Rot_z(−θ) a = (c a_x + s a_y, −s a_x + c a_y, a_z)`.
-fn rot_z_t(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
+pub fn rot_z_t(g: &mut ExprGraph, s: ExprId, c: ExprId, a: V3) -> V3 {
     let x1 = g.mul(c, a[0]);
     let x2 = g.mul(s, a[1]);
     let y1 = g.mul(c, a[1]);
