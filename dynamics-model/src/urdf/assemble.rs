@@ -92,9 +92,28 @@ pub fn robot(
     }
     let tip_link = tip.unwrap_or(tree.ends[last].1);
     if body[tip_link] != n {
-        let moved_by = match body[tip_link] {
+        let b = body[tip_link];
+        let moved_by = match b {
             0 => "it is on the fixed base, which no joint moves".to_string(),
             b => format!("it is moved by joint `{}`", urdf.joints[chain[b - 1]].name),
+        };
+        // The movable joints beyond the tip: locking them makes the tip the chain's end.
+        // Body b is moved by chain[b − 1]; chain[b..] lie between the tip and the chain's end.
+        let beyond: Vec<String> = chain
+            .get(b..)
+            .unwrap_or(&[])
+            .iter()
+            .map(|&j| format!("{}=VALUE", urdf.joints[j].name))
+            .collect();
+        let fix = if b == 0 {
+            "choose a tip link attached by fixed joints to the last movable joint's child link"
+                .to_string()
+        } else {
+            format!(
+                "choose a tip link attached by fixed joints to link `{}`, or lock the movable joints after the tip (CLI `--lock`, Builder `.lock`, derive `lock(..)`): {}",
+                tree.link_names[tree.ends[last].1],
+                beyond.join(", ")
+            )
         };
         return Err(vec![Invalid::new(
             Subject::EndEffector,
@@ -105,7 +124,7 @@ pub fn robot(
                 tree.link_names[tree.ends[last].1],
                 urdf.joints[last].name
             ),
-            "choose a tip link attached by fixed joints to the last movable joint's child link, or lock the joints after it",
+            fix,
         )]);
     }
     let mut m0i = Matrix4::identity();
