@@ -4,11 +4,22 @@
 //! The recursions are the generator's own (they share no code with the reference
 //! implementation in `dynamics-reference`, so that comparing the two means something):
 //! [`frames`] prepares the chain in joint frames, [`rnea`] expands Newton–Euler, [`crba`] the
-//! composite-rigid-body mass matrix and [`ldlt`] the forward-dynamics solve.
+//! composite-rigid-body mass matrix, and forward dynamics takes one of two routes:
+//!
+//! * [`ForwardRoute::Ldlt`]: `M(θ)` by [`crba`], the bias `c + g` by [`rnea`] with `θ̈ = 0`,
+//!   and the unrolled [`ldlt`] solve of `M θ̈ = τ − c − g`;
+//! * [`ForwardRoute::Aba`]: the articulated-body algorithm, [`aba`].
+//!
+//! Both are expanded and [`expand`] keeps the one whose live graph needs fewer operations
+//! (`op_counts(..).total()`, every kind weighted 1; a tie keeps LDLᵀ). Which one wins depends
+//! on the robot: the LDLᵀ route grows as n³ but shares the mass matrix's work and folds well
+//! on short chains, the articulated-body algorithm grows as n.
+//! Likewise each Newton–Euler expansion keeps the cheapest of three equal forms.
 //!
 //! The leaves of the graph are the inputs of the generated functions: `q`, `q̇`, `q̈`, `τ`
 //! (groups [`Q`], [`QD`], [`QDD`], [`TAU`]), and `sin q_i`, `cos q_i` of revolute joints.
 
+pub mod aba;
 pub mod crba;
 pub mod frames;
 pub mod ldlt;
@@ -38,6 +49,15 @@ pub fn input(group: u8, index: usize) -> Input {
     }
 }
 
+/// The algorithm behind [`Dynamics::forward_dynamics`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ForwardRoute {
+    /// Mass matrix by CRBA, bias by Newton–Euler, unrolled LDLᵀ solve.
+    Ldlt,
+    /// Featherstone's articulated-body algorithm.
+    Aba,
+}
+
 /// The expanded dynamics of one robot: a graph and the outputs of each function.
 #[derive(Clone, Debug)]
 pub struct Dynamics {
@@ -55,10 +75,22 @@ pub struct Dynamics {
     pub inverse_dynamics: Vec<ExprId>,
     /// `q̈ = M⁻¹(τ − c − g)`.
     pub forward_dynamics: Vec<ExprId>,
+    /// The algorithm `forward_dynamics` was expanded with.
+    pub forward_route: ForwardRoute,
 }
 
-/// Expands the five functions of `robot` (gravity as in `robot.gravity`).
+/// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
+/// by the cheaper of the two routes (ties: [`ForwardRoute::Ldlt`]).
 pub fn expand(robot: &Robot) -> Dynamics {
+    expand_routes(robot, None)
+}
+
+/// [`expand`] with forward dynamics by the given route.
+pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
+    expand_routes(robot, Some(route))
+}
+
+fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
     let frames = frames::joint_frames(robot);
     let n = robot.dof();
     let mut g = ExprGraph::new();
@@ -108,7 +140,19 @@ pub fn expand(robot: &Robot) -> Dynamics {
     let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, frames.gravity);
     let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
     let rhs: Vec<ExprId> = (0..n).map(|i| g.sub(tau[i], bias[i])).collect();
-    let forward_dynamics = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
+    let by_ldlt = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
+    let by_aba = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity);
+    let route = route.unwrap_or_else(|| {
+        if g.op_counts(&by_aba).total() < g.op_counts(&by_ldlt).total() {
+            ForwardRoute::Aba
+        } else {
+            ForwardRoute::Ldlt
+        }
+    });
+    let forward_dynamics = match route {
+        ForwardRoute::Ldlt => by_ldlt,
+        ForwardRoute::Aba => by_aba,
+    };
     Dynamics {
         graph: g,
         dof: n,
@@ -117,6 +161,7 @@ pub fn expand(robot: &Robot) -> Dynamics {
         gravity,
         inverse_dynamics,
         forward_dynamics,
+        forward_route: route,
     }
 }
 

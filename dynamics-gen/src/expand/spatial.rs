@@ -392,3 +392,231 @@ impl Inertia {
         }
     }
 }
+
+/// A symbolic 3×3 matrix, row-major.
+pub type M3 = [[ExprId; 3]; 3];
+
+/// A symbolic symmetric 6×6 spatial inertia `[[A, B], [Bᵀ, C]]` (21 distinct entries), with
+/// `A = Aᵀ` and `C = Cᵀ` stored as mirrored ids: the articulated-body inertias of
+/// [`super::aba`], which are not rigid-body inertias. It maps a twist `(ω, v)` to the wrench
+/// `(A ω + B v, Bᵀ ω + C v)`; a rigid body has `A = I_o`, `B = [h]`, `C = m 1₃`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SymInertia {
+    /// `A`: angular–angular block (symmetric).
+    pub a: M3,
+    /// `B`: angular–linear block.
+    pub b: M3,
+    /// `C`: linear–linear block (symmetric).
+    pub c: M3,
+}
+
+/// A symmetric 3×3 matrix from its upper triangle `f(i, j)`, `i ≤ j`, built row by row.
+fn sym3(mut f: impl FnMut(usize, usize) -> ExprId) -> M3 {
+    let mut m = [[None; 3]; 3];
+    for i in 0..3 {
+        for j in i..3 {
+            m[i][j] = Some(f(i, j));
+        }
+    }
+    let mut out = [[ExprId(0); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (a, b) = if i <= j { (i, j) } else { (j, i) };
+            out[i][j] = m[a][b].unwrap_or(ExprId(0));
+        }
+    }
+    out
+}
+
+/// A general 3×3 matrix from `f(i, j)`, built row by row.
+fn gen3(mut f: impl FnMut(usize, usize) -> ExprId) -> M3 {
+    let mut out = [[ExprId(0); 3]; 3];
+    for (i, row) in out.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            *x = f(i, j);
+        }
+    }
+    out
+}
+
+/// The cross-product matrix `[p]`.
+fn skew(g: &mut ExprGraph, p: V3) -> M3 {
+    let z = g.zero();
+    let [x, y, w] = p;
+    let (nx, ny, nw) = (g.neg(x), g.neg(y), g.neg(w));
+    [[z, nw, y], [w, z, nx], [ny, x, z]]
+}
+
+/// `(a b)_{ij}` for symbolic 3×3 matrices.
+fn mat_entry(g: &mut ExprGraph, a: &M3, b: &M3, i: usize, j: usize) -> ExprId {
+    let col = [b[0][j], b[1][j], b[2][j]];
+    g.dot(&a[i], &col)
+}
+
+/// `Q M Qᵀ` with `Q = Rot_z(θ)`: the z row and column turn like vectors, and the xy block
+/// splits into a symmetric part (turned with the double angle, as in `rotate_inertia_z`)
+/// and an antisymmetric part `k J`, which rotations about z keep.
+fn rot_z_congruence(g: &mut ExprGraph, s: ExprId, c: ExprId, m: &M3, symmetric: bool) -> M3 {
+    let col = rot_z(g, s, c, [m[0][2], m[1][2], m[2][2]]);
+    let row = if symmetric {
+        col
+    } else {
+        rot_z(g, s, c, [m[2][0], m[2][1], m[2][2]])
+    };
+    let cc = g.mul(c, c);
+    let ss = g.mul(s, s);
+    let sc = g.mul(s, c);
+    let cos2 = g.sub(cc, ss);
+    let sin2 = g.cmul(2.0, sc);
+    let sum = g.add(m[0][0], m[1][1]);
+    let mean = g.cmul(0.5, sum);
+    let diff = g.sub(m[0][0], m[1][1]);
+    let d = g.cmul(0.5, diff);
+    let (off, k) = if symmetric {
+        (m[0][1], g.zero())
+    } else {
+        let sum = g.add(m[0][1], m[1][0]);
+        let diff = g.sub(m[0][1], m[1][0]);
+        (g.cmul(0.5, sum), g.cmul(0.5, diff))
+    };
+    let dc = g.mul(d, cos2);
+    let os = g.mul(off, sin2);
+    let u = g.sub(dc, os);
+    let xx = g.add(mean, u);
+    let yy = g.sub(mean, u);
+    let ds = g.mul(d, sin2);
+    let oc = g.mul(off, cos2);
+    let xy = g.add(ds, oc);
+    let (m01, m10) = if symmetric {
+        (xy, xy)
+    } else {
+        (g.add(xy, k), g.sub(xy, k))
+    };
+    [
+        [xx, m01, col[0]],
+        [m10, yy, col[1]],
+        [row[0], row[1], m[2][2]],
+    ]
+}
+
+/// `Rᵀ M R` for a constant rotation `R`.
+fn rot_const_congruence(g: &mut ExprGraph, r: &[[f64; 3]; 3], m: &M3, symmetric: bool) -> M3 {
+    let rc = gen3(|i, j| g.constant(r[i][j]));
+    let rt = gen3(|i, j| rc[j][i]);
+    let mr = gen3(|i, j| mat_entry(g, m, &rc, i, j));
+    if symmetric {
+        sym3(|i, j| mat_entry(g, &rt, &mr, i, j))
+    } else {
+        gen3(|i, j| mat_entry(g, &rt, &mr, i, j))
+    }
+}
+
+impl SymInertia {
+    /// The rigid-body inertia `ib` as a symmetric 6×6: `A = I_o`, `B = [h]`, `C = m 1₃`.
+    pub fn rigid(g: &mut ExprGraph, ib: &Inertia) -> Self {
+        let z = g.zero();
+        let diag = [[ib.m, z, z], [z, ib.m, z], [z, z, ib.m]];
+        Self {
+            a: sym(&ib.i),
+            b: skew(g, ib.h),
+            c: diag,
+        }
+    }
+
+    /// The entry `(j, k)` of the 6×6 matrix (angular indices 0–2, linear 3–5).
+    pub fn entry(&self, j: usize, k: usize) -> ExprId {
+        match (j < 3, k < 3) {
+            (true, true) => self.a[j][k],
+            (true, false) => self.b[j][k - 3],
+            (false, true) => self.b[k][j - 3],
+            (false, false) => self.c[j - 3][k - 3],
+        }
+    }
+
+    /// The symmetric 6×6 matrix with upper-triangle entries `f(j, k)`, `j ≤ k`, built in
+    /// row order.
+    pub fn from_upper(mut f: impl FnMut(usize, usize) -> ExprId) -> Self {
+        let mut m = [[ExprId(0); 6]; 6];
+        for j in 0..6 {
+            for k in j..6 {
+                m[j][k] = f(j, k);
+                m[k][j] = m[j][k];
+            }
+        }
+        Self {
+            a: gen3(|i, j| m[i][j]),
+            b: gen3(|i, j| m[i][j + 3]),
+            c: gen3(|i, j| m[i + 3][j + 3]),
+        }
+    }
+
+    /// `x + y`.
+    pub fn add(g: &mut ExprGraph, x: &Self, y: &Self) -> Self {
+        Self {
+            a: sym3(|i, j| g.add(x.a[i][j], y.a[i][j])),
+            b: gen3(|i, j| g.add(x.b[i][j], y.b[i][j])),
+            c: sym3(|i, j| g.add(x.c[i][j], y.c[i][j])),
+        }
+    }
+
+    /// The wrench `(A ω + B v, Bᵀ ω + C v)` of the twist `v = (ω, v)`.
+    pub fn apply(&self, g: &mut ExprGraph, v: &Spatial) -> Spatial {
+        let mut ang = v.ang;
+        let mut lin = v.lin;
+        for r in 0..3 {
+            let bt = [self.b[0][r], self.b[1][r], self.b[2][r]];
+            let x = g.dot(&self.a[r], &v.ang);
+            let y = g.dot(&self.b[r], &v.lin);
+            ang[r] = g.add(x, y);
+            let x = g.dot(&bt, &v.ang);
+            let y = g.dot(&self.c[r], &v.lin);
+            lin[r] = g.add(x, y);
+        }
+        Spatial { ang, lin }
+    }
+
+    /// The matrix in a frame whose origin is at `p` (same axes): with `P = [p]`,
+    /// `A' = A + B P + (B P)ᵀ − P C P`, `B' = B − P C`, `C' = C`.
+    pub fn shift(&self, g: &mut ExprGraph, p: V3) -> Self {
+        let pm = skew(g, p);
+        let bp = gen3(|i, j| mat_entry(g, &self.b, &pm, i, j));
+        let pc = gen3(|i, j| mat_entry(g, &pm, &self.c, i, j));
+        let a = sym3(|i, j| {
+            let pcp = mat_entry(g, &pc, &pm, i, j);
+            let t = g.add(bp[i][j], bp[j][i]);
+            let t = g.sub(t, pcp);
+            g.add(self.a[i][j], t)
+        });
+        let b = gen3(|i, j| g.sub(self.b[i][j], pc[i][j]));
+        Self { a, b, c: self.c }
+    }
+}
+
+impl JointMotion<'_> {
+    /// `[Ad_T]ᵀ I [Ad_T]` for `T = T_{J_i,J_{i−1}}` and a symmetric 6×6 `I` of {J_i}: `I`
+    /// expressed in {J_{i−1}}. As in [`JointMotion::inertia_to_parent`], in two stages: the
+    /// joint's own `Rot_z(−θ)` (`A, B, C ↦ Q A Qᵀ, Q B Qᵀ, Q C Qᵀ` with `Q = Rot_z(θ)`) or
+    /// `Trans_z(−θ)` (a shift), then the constant `C_i`: shift by `p`, then rotate by `R`.
+    pub fn sym_inertia_to_parent(&self, g: &mut ExprGraph, ia: &SymInertia) -> SymInertia {
+        let f = self.frame;
+        let mid = match f.kind {
+            JointKind::Revolute => SymInertia {
+                a: rot_z_congruence(g, self.sin, self.cos, &ia.a, true),
+                b: rot_z_congruence(g, self.sin, self.cos, &ia.b, false),
+                c: rot_z_congruence(g, self.sin, self.cos, &ia.c, true),
+            },
+            JointKind::Prismatic => {
+                let zero = g.zero();
+                let p = [zero, zero, g.neg(self.q)];
+                ia.shift(g, p)
+            }
+        };
+        let p = g.const3(f.p);
+        let shifted = mid.shift(g, p);
+        SymInertia {
+            a: rot_const_congruence(g, &f.r, &shifted.a, true),
+            b: rot_const_congruence(g, &f.r, &shifted.b, false),
+            c: rot_const_congruence(g, &f.r, &shifted.c, true),
+        }
+    }
+}

@@ -1,0 +1,183 @@
+//! Symbolic forward dynamics by the articulated-body algorithm (Featherstone, *Rigid Body
+//! Dynamics Algorithms*, ch. 7), in joint frames and the book's twist/wrench conventions.
+//!
+//! ```text
+//! pass 1, i = 1..n:   V_i   = [Ad_{T_{i,i−1}}] V_{i−1} + S_i θ̇_i
+//!                     c_i   = [ad_{V_i}] S_i θ̇_i
+//!                     I^A_i = G_i,   p^A_i = −[ad_{V_i}]ᵀ G_i V_i
+//! pass 2, i = n..1:   U_i   = I^A_i S_i,   D_i = S_iᵀ U_i,   u_i = τ_i − S_iᵀ p^A_i
+//!                     I^a_i = I^A_i − U_i D_i⁻¹ U_iᵀ
+//!                     p^a_i = p^A_i + I^a_i c_i + U_i D_i⁻¹ u_i
+//!                     I^A_{i−1} += [Ad_{T_{i,i−1}}]ᵀ I^a_i [Ad_{T_{i,i−1}}]
+//!                     p^A_{i−1} += [Ad_{T_{i,i−1}}]ᵀ p^a_i
+//! pass 3, i = 1..n:   a'_i  = [Ad_{T_{i,i−1}}] a_{i−1} + c_i
+//!                     θ̈_i   = D_i⁻¹ (u_i − U_iᵀ a'_i),   a_i = a'_i + S_i θ̈_i
+//! ```
+//!
+//! with `V_0 = 0` and `a_0 = (0, −g)`: gravity enters as an upward acceleration of the base,
+//! as in [`super::rnea`]. The articulated inertias `I^A_i` are general symmetric 6×6
+//! matrices ([`SymInertia`]), moved to the parent in two stages (the joint's own motion,
+//! then the constant `C_i`) so that the zeros of the constants fold away.
+//!
+//! In joint frames `S_i` is `e_z` in the angular (revolute) or linear (prismatic) part, at
+//! index `s` of the 6-vector, so `U_i` is column `s` of `I^A_i`, `D_i` its entry `s` and
+//! `S_iᵀ p` one component. Three exact identities are used instead of letting rounding
+//! decide: row and column `s` of `I^a_i` are zero (`I^a_i S_i = U_i − U_i D_i⁻¹ D_i = 0`),
+//! `S_iᵀ p^a_i = τ_i`, and `a_{i,s} = a'_{i,s} + θ̈_i = D_i⁻¹ (u_i − Σ_{j≠s} U_{i,j} a'_{i,j})`.
+//! One division per joint, `1/D_i`, shared by both passes.
+
+use super::spatial::{Inertia, JointMotion, Spatial, SymInertia, VectorOps};
+use crate::expr::{ExprGraph, ExprId};
+use dynamics_model::JointKind;
+
+/// Index of the joint's axis in the 6-vector `(ω, v)`: 2 (revolute) or 5 (prismatic).
+fn axis(kind: JointKind) -> usize {
+    match kind {
+        JointKind::Revolute => 2,
+        JointKind::Prismatic => 5,
+    }
+}
+
+fn get(x: &Spatial, k: usize) -> ExprId {
+    if k < 3 {
+        x.ang[k]
+    } else {
+        x.lin[k - 3]
+    }
+}
+
+fn set(x: &mut Spatial, k: usize, value: ExprId) {
+    if k < 3 {
+        x.ang[k] = value;
+    } else {
+        x.lin[k - 3] = value;
+    }
+}
+
+fn add(g: &mut ExprGraph, x: &Spatial, y: &Spatial) -> Spatial {
+    Spatial {
+        ang: g.add3(x.ang, y.ang),
+        lin: g.add3(x.lin, y.lin),
+    }
+}
+
+/// `θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ))` for the symbolic `θ̇`, `τ` and gravity `gravity` in {0}.
+pub fn aba(
+    g: &mut ExprGraph,
+    joints: &[JointMotion<'_>],
+    qd: &[ExprId],
+    tau: &[ExprId],
+    gravity: [f64; 3],
+) -> Vec<ExprId> {
+    let n = joints.len();
+    let zero3 = g.zero3();
+    // Pass 1: velocities, velocity-product accelerations c_i, rigid inertias and bias forces.
+    let mut v = Spatial {
+        ang: zero3,
+        lin: zero3,
+    };
+    let mut c = Vec::with_capacity(n);
+    let mut ia = Vec::with_capacity(n);
+    let mut pa = Vec::with_capacity(n);
+    for (i, jm) in joints.iter().enumerate() {
+        let mut vi = jm.motion_to_child(g, v);
+        // [ad_V] S θ̇: (ω × e_z, v × e_z) θ̇ (revolute) or (0, ω × e_z) θ̇ (prismatic); the
+        // joint's own S θ̇ drops out of the cross product, so V before adding it serves.
+        let w_ez = [vi.ang[1], g.neg(vi.ang[0]), g.zero()];
+        let ci = match jm.frame.kind {
+            JointKind::Revolute => {
+                let v_ez = [vi.lin[1], g.neg(vi.lin[0]), g.zero()];
+                Spatial {
+                    ang: g.scale3(qd[i], w_ez),
+                    lin: g.scale3(qd[i], v_ez),
+                }
+            }
+            JointKind::Prismatic => Spatial {
+                ang: zero3,
+                lin: g.scale3(qd[i], w_ez),
+            },
+        };
+        let s = axis(jm.frame.kind);
+        let vs = g.add(get(&vi, s), qd[i]);
+        set(&mut vi, s, vs);
+        let gi = Inertia::constant(g, &jm.frame.inertia);
+        // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
+        let p = gi.apply(g, &vi);
+        let wk = g.cross(vi.ang, p.ang);
+        let vl = g.cross(vi.lin, p.lin);
+        let wl = g.cross(vi.ang, p.lin);
+        pa.push(Spatial {
+            ang: g.add3(wk, vl),
+            lin: wl,
+        });
+        ia.push(SymInertia::rigid(g, &gi));
+        c.push(ci);
+        v = vi;
+    }
+    // Pass 2: articulated inertias and bias forces, tip to base.
+    let zero = g.zero();
+    let one = g.one();
+    let mut u_col = vec![[zero; 6]; n];
+    let mut d_inv = vec![one; n];
+    let mut u = vec![zero; n];
+    for i in (0..n).rev() {
+        let s = axis(joints[i].frame.kind);
+        let col: [ExprId; 6] = std::array::from_fn(|j| ia[i].entry(j, s));
+        d_inv[i] = g.div(one, col[s]);
+        u[i] = g.sub(tau[i], get(&pa[i], s));
+        u_col[i] = col;
+        if i == 0 {
+            break;
+        }
+        // W = U D⁻¹ (W_s = 1 exactly, and unused: row and column s of I^a vanish).
+        let w: [ExprId; 6] =
+            std::array::from_fn(|j| if j == s { one } else { g.mul(col[j], d_inv[i]) });
+        let ia_i = ia[i];
+        let ia_small = SymInertia::from_upper(|j, k| {
+            if j == s || k == s {
+                zero
+            } else {
+                let t = g.mul(w[j], col[k]);
+                g.sub(ia_i.entry(j, k), t)
+            }
+        });
+        let iac = ia_small.apply(g, &c[i]);
+        let mut pa_small = add(g, &pa[i], &iac);
+        for j in 0..6 {
+            let value = if j == s {
+                tau[i]
+            } else {
+                let t = g.mul(w[j], u[i]);
+                g.add(get(&pa_small, j), t)
+            };
+            set(&mut pa_small, j, value);
+        }
+        let moved = joints[i].sym_inertia_to_parent(g, &ia_small);
+        ia[i - 1] = SymInertia::add(g, &ia[i - 1], &moved);
+        let fp = joints[i].force_to_parent(g, pa_small);
+        pa[i - 1] = add(g, &pa[i - 1], &fp);
+    }
+    // Pass 3: accelerations, base to tip.
+    let mut a = Spatial {
+        ang: zero3,
+        lin: g.const3([-gravity[0], -gravity[1], -gravity[2]]),
+    };
+    let mut qdd = vec![zero; n];
+    for (i, jm) in joints.iter().enumerate() {
+        let moved = jm.motion_to_child(g, a);
+        let ai = add(g, &moved, &c[i]);
+        let s = axis(jm.frame.kind);
+        let (us, as_): (Vec<ExprId>, Vec<ExprId>) = (0..6)
+            .filter(|&j| j != s)
+            .map(|j| (u_col[i][j], get(&ai, j)))
+            .unzip();
+        let ua = g.dot(&us, &as_);
+        let num = g.sub(u[i], ua);
+        // a_{i,s} = a'_{i,s} + θ̈_i.
+        let a_s = g.mul(d_inv[i], num);
+        qdd[i] = g.sub(a_s, get(&ai, s));
+        a = ai;
+        set(&mut a, s, a_s);
+    }
+    qdd
+}
