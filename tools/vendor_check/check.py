@@ -261,6 +261,46 @@ def camel(stem):
     return "R" + "".join(w.capitalize() for w in "".join(c if c.isalnum() else " " for c in stem).split())
 
 
+CARGO_TOML_DERIVE = """[package]
+name = "vendor-check-derive"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[workspace]
+
+[dependencies]
+nalgebra = "0.35"
+dynamics-macros = {{ path = "{macros}" }}
+"""
+
+
+def write_derive_crate(crate, macros_path, robots):
+    """The same scratch crate, with `#[derive(Dynamics)]` instead of build.rs."""
+    os.makedirs(os.path.join(crate, "src"), exist_ok=True)
+    mods, arms = [], []
+    for r in robots:
+        key = r["key"]
+        opts = [f"file = {json.dumps(r['path'])}"]
+        if r.get("tip"):
+            opts.append(f"tip = {json.dumps(r['tip'])}")
+        if r.get("lock"):
+            opts.append("lock(" + ", ".join(f"{j} = {float(v)!r}" for j, v in r["lock"].items()) + ")")
+        mods.append(f"#[derive(Default, dynamics_macros::Dynamics)]\n#[dynamics({', '.join(opts)})]\npub struct {camel(key)};\n")
+        arms.append(f'            "{key}" => eval_robot!({camel(key)}, line),\n')
+    files = {
+        "Cargo.toml": CARGO_TOML_DERIVE.format(macros=macros_path),
+        "src/main.rs": (MAIN_RS_HEAD + "".join(mods) + MAIN_RS_EVAL + "".join(arms)
+                        + '            other => panic!("unknown robot {other}"),\n        };\n        println!("{out}");\n    }\n}\n'),
+    }
+    for name, text in files.items():
+        p = os.path.join(crate, name)
+        old = open(p).read() if os.path.exists(p) else None
+        if old != text:
+            with open(p, "w") as f:
+                f.write(text)
+
+
 def write_crate(crate, gen_path, robots):
     os.makedirs(os.path.join(crate, "src"), exist_ok=True)
     files = {"Cargo.toml": CARGO_TOML.format(gen=gen_path)}
@@ -318,6 +358,8 @@ def main():
     ap.add_argument("--target-dir", default="/tmp/vendor-target")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--no-generated", action="store_true", help="skip step 3 (the generated code)")
+    ap.add_argument("--front", choices=["builder", "derive"], default="builder",
+                    help="step 3 through build.rs and the Builder, or through #[derive(Dynamics)]")
     ap.add_argument("--clean", action="store_true", help="time a clean build of the scratch crate (rm -rf the target dir first)")
     ap.add_argument("--json", default=None, help="write the full results here")
     args = ap.parse_args()
@@ -367,11 +409,15 @@ def main():
     if not args.no_generated and usable:
         if args.clean and os.path.isdir(args.target_dir):
             shutil.rmtree(args.target_dir)
-        write_crate(args.crate, os.path.join(args.repo, "dynamics-gen"), usable)
+        if args.front == "derive":
+            write_derive_crate(args.crate, os.path.join(args.repo, "dynamics-macros"), usable)
+        else:
+            write_crate(args.crate, os.path.join(args.repo, "dynamics-gen"), usable)
         t_first = cargo_build(args.crate, args.target_dir, args.jobs)
-        os.utime(usable[0]["path"])  # touch one robot file: build.rs regenerates, the crate recompiles
+        os.utime(usable[0]["path"])  # touch one robot file: the crate regenerates and recompiles
         t_touch = cargo_build(args.crate, args.target_dir, args.jobs)
-        bin_path = os.path.join(args.target_dir, "release", "vendor-check")
+        bin_name = "vendor-check-derive" if args.front == "derive" else "vendor-check"
+        bin_path = os.path.join(args.target_dir, "release", bin_name)
         for r, res in zip(usable, [x for x in results if "eval" in x]):
             n = len(r["states"][0]["q"])
             lines = "".join(" ".join(repr(float(v)) for k in ("q", "qd", "qdd", "tau") for v in s[k]) + "\n" for s in r["states"])
