@@ -16,8 +16,17 @@
 //! `cos θ_i`, `τ_i` is one component of the link wrench, and every zero or one in `C_i` and
 //! in the inertias folds away.
 //!
-//! When the axis is a coordinate axis of the link frame (as in most URDF files), the frame
-//! change is a signed permutation with exact entries, so nothing is lost to rounding.
+//! The frames follow the modified Denavit–Hartenberg convention (Craig): `x_i` along the
+//! common normal from axis i to axis i+1, so the pose of {J_i} in {J_{i−1}} is
+//! `Rot_x(α) Trans_x(a) Rot_z(θ₀ + θ) Trans_z(d)` and `C_i = (Rot_x(−α), (−a, 0, −d))`: four
+//! multiplications per rotated vector instead of nine. The home offset θ₀ (or d, for a
+//! prismatic joint) goes into the joint variable (`sin(q + θ₀)`), or into `C_i` when it is a
+//! multiple of π/2. DH parameters are snapped (angles within [`SNAP`] of kπ/2, lengths below
+//! it) so that exact zeros and ones fold, and a DH fit is used only when it rebuilds the pose
+//! to [`DH_TOL`]; otherwise the joint keeps a general constant transform.
+//!
+//! Finally [`regroup`] moves inertial parameters that cannot be seen through a revolute joint
+//! to the link before it, which removes three parameters per revolute link.
 
 use dynamics_model::lie::{angular, linear, rotation, rp_to_trans, trans_inv, translation};
 use dynamics_model::{JointKind, Robot, SpatialInertia};
@@ -385,7 +394,7 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
 /// distribution need not be physical), so they are moved to link i−1 (dropped at the fixed
 /// base). Link i keeps `h_x, h_y, I_xx − I_yy, I_zz, I_xy, I_xz, I_yz`: three fewer non-zero
 /// parameters per revolute joint, and the dynamics are unchanged.
-fn regroup(joints: &mut [JointFrame], frames: &[Matrix4<f64>]) {
+pub fn regroup(joints: &mut [JointFrame], frames: &[Matrix4<f64>]) {
     for i in (0..joints.len()).rev() {
         if joints[i].kind != JointKind::Revolute {
             continue;
