@@ -453,54 +453,93 @@ fn mat_entry(g: &mut ExprGraph, a: &M3, b: &M3, i: usize, j: usize) -> ExprId {
     g.dot(&a[i], &col)
 }
 
-/// `Q M Qᵀ` with `Q = Rot_z(θ)`: the z row and column turn like vectors, and the xy block
-/// splits into a symmetric part (turned with the double angle, as in `rotate_inertia_z`)
-/// and an antisymmetric part `k J`, which rotations about z keep.
-fn rot_z_congruence(g: &mut ExprGraph, s: ExprId, c: ExprId, m: &M3, symmetric: bool) -> M3 {
-    let col = rot_z(g, s, c, [m[0][2], m[1][2], m[2][2]]);
-    let row = if symmetric {
-        col
+/// `Q M Qᵀ` with `Q` the rotation by θ about coordinate axis `k` (`sin θ = s`,
+/// `cos θ = c`). With `(x, y, z)` the axes `(k+1, k+2, k)` cyclically, `Q` turns the xy plane
+/// by `[[c, −s], [s, c]]`: the z row and column turn like vectors, and the xy block is
+///
+/// ```text
+/// t = (m_xx − m_yy) s² + (m_xy + m_yx) s c,   m_xx' = m_xx − t,   m_yy' = m_yy + t
+/// m_xy' = (m_xx − m_yy) s c + m_xy c² − m_yx s²,   m_yx' = (m_xx − m_yy) s c + m_yx c² − m_xy s²
+/// ```
+///
+/// (for symmetric `M`: `m_xy' = m_yx' = (m_xx − m_yy) s c + m_xy (c² − s²)`).
+fn rot_axis_congruence(
+    g: &mut ExprGraph,
+    k: usize,
+    s: ExprId,
+    c: ExprId,
+    m: &M3,
+    symmetric: bool,
+) -> M3 {
+    let (x, y, z) = ((k + 1) % 3, (k + 2) % 3, k);
+    let turn = |g: &mut ExprGraph, u: ExprId, w: ExprId| {
+        let a = g.mul(c, u);
+        let b = g.mul(s, w);
+        let e = g.mul(s, u);
+        let f = g.mul(c, w);
+        (g.sub(a, b), g.add(e, f))
+    };
+    let (col_x, col_y) = turn(g, m[x][z], m[y][z]);
+    let (row_x, row_y) = if symmetric {
+        (col_x, col_y)
     } else {
-        rot_z(g, s, c, [m[2][0], m[2][1], m[2][2]])
+        turn(g, m[z][x], m[z][y])
     };
     let cc = g.mul(c, c);
     let ss = g.mul(s, s);
     let sc = g.mul(s, c);
-    let cos2 = g.sub(cc, ss);
-    let sin2 = g.cmul(2.0, sc);
-    let sum = g.add(m[0][0], m[1][1]);
-    let mean = g.cmul(0.5, sum);
-    let diff = g.sub(m[0][0], m[1][1]);
-    let d = g.cmul(0.5, diff);
-    let (off, k) = if symmetric {
-        (m[0][1], g.zero())
-    } else {
-        let sum = g.add(m[0][1], m[1][0]);
-        let diff = g.sub(m[0][1], m[1][0]);
-        (g.cmul(0.5, sum), g.cmul(0.5, diff))
-    };
-    let dc = g.mul(d, cos2);
-    let os = g.mul(off, sin2);
-    let u = g.sub(dc, os);
-    let xx = g.add(mean, u);
-    let yy = g.sub(mean, u);
-    let ds = g.mul(d, sin2);
-    let oc = g.mul(off, cos2);
-    let xy = g.add(ds, oc);
-    let (m01, m10) = if symmetric {
+    let diff = g.sub(m[x][x], m[y][y]);
+    let off = g.add(m[x][y], m[y][x]);
+    let t1 = g.mul(diff, ss);
+    let t2 = g.mul(off, sc);
+    let t = g.add(t1, t2);
+    let xx = g.sub(m[x][x], t);
+    let yy = g.add(m[y][y], t);
+    let dsc = g.mul(diff, sc);
+    let (xy, yx) = if symmetric {
+        let cos2 = g.sub(cc, ss);
+        let o = g.mul(m[x][y], cos2);
+        let xy = g.add(dsc, o);
         (xy, xy)
     } else {
-        (g.add(xy, k), g.sub(xy, k))
+        let a = g.mul(m[x][y], cc);
+        let b = g.mul(m[y][x], ss);
+        let ab = g.sub(a, b);
+        let xy = g.add(dsc, ab);
+        let a = g.mul(m[y][x], cc);
+        let b = g.mul(m[x][y], ss);
+        let ab = g.sub(a, b);
+        (xy, g.add(dsc, ab))
     };
-    [
-        [xx, m01, col[0]],
-        [m10, yy, col[1]],
-        [row[0], row[1], m[2][2]],
-    ]
+    let mut out = *m;
+    out[x][x] = xx;
+    out[y][y] = yy;
+    out[x][y] = xy;
+    out[y][x] = yx;
+    out[x][z] = col_x;
+    out[y][z] = col_y;
+    out[z][x] = row_x;
+    out[z][y] = row_y;
+    out
 }
 
-/// `Rᵀ M R` for a constant rotation `R`.
+/// `Rᵀ M R` for a constant rotation `R`. A rotation about a coordinate axis by an angle
+/// that is not a multiple of π/2 (the DH `Rot_x(−α)`) goes through [`rot_axis_congruence`];
+/// any other through two products, where the zeros of a signed permutation fold away.
 fn rot_const_congruence(g: &mut ExprGraph, r: &[[f64; 3]; 3], m: &M3, symmetric: bool) -> M3 {
+    for k in 0..3 {
+        let (x, y) = ((k + 1) % 3, (k + 2) % 3);
+        let axis_fixed = (0..3).all(|j| {
+            let e = if j == k { 1.0 } else { 0.0 };
+            r[k][j] == e && r[j][k] == e
+        });
+        // Rᵀ = Q = [[c, −s], [s, c]] in the (x, y) plane.
+        let (c, s) = (r[x][x], r[x][y]);
+        if axis_fixed && r[y][y] == c && r[y][x] == -s && s != 0.0 && c != 0.0 {
+            let (s, c) = (g.constant(s), g.constant(c));
+            return rot_axis_congruence(g, k, s, c, m, symmetric);
+        }
+    }
     let rc = gen3(|i, j| g.constant(r[i][j]));
     let rt = gen3(|i, j| rc[j][i]);
     let mr = gen3(|i, j| mat_entry(g, m, &rc, i, j));
@@ -601,9 +640,9 @@ impl JointMotion<'_> {
         let f = self.frame;
         let mid = match f.kind {
             JointKind::Revolute => SymInertia {
-                a: rot_z_congruence(g, self.sin, self.cos, &ia.a, true),
-                b: rot_z_congruence(g, self.sin, self.cos, &ia.b, false),
-                c: rot_z_congruence(g, self.sin, self.cos, &ia.c, true),
+                a: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.a, true),
+                b: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.b, false),
+                c: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.c, true),
             },
             JointKind::Prismatic => {
                 let zero = g.zero();

@@ -207,3 +207,47 @@ fn aba_matches_ldlt_on_random_chains() {
     }
     println!("ABA vs LDLᵀ on 200 random chains: worst relative error {worst:e}");
 }
+
+#[test]
+fn expand_keeps_the_cheaper_forward_dynamics_route() {
+    use dynamics_model::random::{random_chain, ChainSpec};
+    use dynamics_model::LoadOptions;
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/robots");
+    let robots = [
+        dynamics_model::load_file(&data.join("ur5.urdf"), &LoadOptions::default()).expect("ur5"),
+        dynamics_model::load_file(&data.join("panda.urdf"), &LoadOptions::default())
+            .expect("panda"),
+        dynamics_model::load_file(&data.join("rand7.urdf"), &LoadOptions::default())
+            .expect("rand7"),
+        random_chain(
+            12,
+            ChainSpec {
+                dof: 12,
+                prismatic: 0.3,
+            },
+        ),
+    ];
+    for r in &robots {
+        let aba = expand_with_route(r, ForwardRoute::Aba);
+        let ldlt = expand_with_route(r, ForwardRoute::Ldlt);
+        let best = expand(r);
+        let a = aba.graph.op_counts(&aba.forward_dynamics);
+        let l = ldlt.graph.op_counts(&ldlt.forward_dynamics);
+        let b = best.graph.op_counts(&best.forward_dynamics);
+        println!(
+            "{} (n = {}): LDLᵀ {l} (total {}); ABA {a} (total {}); kept {:?}",
+            r.name,
+            r.dof(),
+            l.total(),
+            a.total(),
+            best.forward_route
+        );
+        let want = if a.total() < l.total() {
+            ForwardRoute::Aba
+        } else {
+            ForwardRoute::Ldlt
+        };
+        assert_eq!(best.forward_route, want, "{}", r.name);
+        assert_eq!(b.total(), a.total().min(l.total()), "{}", r.name);
+    }
+}
