@@ -26,7 +26,7 @@
 //! `S_iᵀ p^a_i = τ_i`, and `a_{i,s} = a'_{i,s} + θ̈_i = D_i⁻¹ (u_i − Σ_{j≠s} U_{i,j} a'_{i,j})`.
 //! One division per joint, `1/D_i`, shared by both passes.
 
-use super::spatial::{Inertia, JointMotion, Spatial, SymInertia, VectorOps};
+use super::spatial::{Inertia, JointMotion, ShiftForm, Spatial, SymInertia, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
 
@@ -61,13 +61,15 @@ fn add(g: &mut ExprGraph, x: &Spatial, y: &Spatial) -> Spatial {
     }
 }
 
-/// `θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ))` for the symbolic `θ̇`, `τ` and gravity `gravity` in {0}.
+/// `θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ))` for the symbolic `θ̇`, `τ` and gravity `gravity` in {0};
+/// the articulated inertias are shifted as `form` says.
 pub fn aba(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
     qd: &[ExprId],
     tau: &[ExprId],
     gravity: [f64; 3],
+    form: ShiftForm,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let zero3 = g.zero3();
@@ -152,7 +154,7 @@ pub fn aba(
             };
             set(&mut pa_small, j, value);
         }
-        let moved = joints[i].sym_inertia_to_parent(g, &ia_small);
+        let moved = joints[i].sym_inertia_to_parent(g, &ia_small, form);
         ia[i - 1] = SymInertia::add(g, &ia[i - 1], &moved);
         let fp = joints[i].force_to_parent(g, pa_small);
         pa[i - 1] = add(g, &pa[i - 1], &fp);

@@ -30,7 +30,7 @@ pub mod spatial;
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::{JointKind, Robot};
 use rnea::LinkForce;
-use spatial::JointMotion;
+use spatial::{JointMotion, ShiftForm};
 
 /// Input group of the joint positions q.
 pub const Q: u8 = 0;
@@ -141,7 +141,22 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
     let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
     let rhs: Vec<ExprId> = (0..n).map(|i| g.sub(tau[i], bias[i])).collect();
     let by_ldlt = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
-    let by_aba = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity);
+    // The cheapest of the equal ways of writing out the articulated inertias' shifts (ties
+    // keep the earlier one).
+    let mut by_aba = aba::aba(
+        &mut g,
+        &motions,
+        &qd,
+        &tau,
+        frames.gravity,
+        ShiftForm::Direct,
+    );
+    for form in [ShiftForm::Folded, ShiftForm::Sparse] {
+        let candidate = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity, form);
+        if g.op_counts(&candidate).total() < g.op_counts(&by_aba).total() {
+            by_aba = candidate;
+        }
+    }
     let route = route.unwrap_or_else(|| {
         if g.op_counts(&by_aba).total() < g.op_counts(&by_ldlt).total() {
             ForwardRoute::Aba

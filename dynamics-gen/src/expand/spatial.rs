@@ -615,20 +615,55 @@ impl SymInertia {
     }
 
     /// The matrix in a frame whose origin is at `p` (same axes): with `P = [p]`,
-    /// `A' = A + B P + (B P)ᵀ − P C P`, `B' = B − P C`, `C' = C`.
-    pub fn shift(&self, g: &mut ExprGraph, p: V3) -> Self {
+    /// `A' = A + B P + (B P)ᵀ − P C P`, `B' = B − P C`, `C' = C`; `form` says how `A'` is
+    /// written out.
+    pub fn shift(&self, g: &mut ExprGraph, p: V3, form: ShiftForm) -> Self {
         let pm = skew(g, p);
-        let bp = gen3(|i, j| mat_entry(g, &self.b, &pm, i, j));
         let pc = gen3(|i, j| mat_entry(g, &pm, &self.c, i, j));
-        let a = sym3(|i, j| {
-            let pcp = mat_entry(g, &pc, &pm, i, j);
-            let t = g.add(bp[i][j], bp[j][i]);
-            let t = g.sub(t, pcp);
-            g.add(self.a[i][j], t)
-        });
         let b = gen3(|i, j| g.sub(self.b[i][j], pc[i][j]));
+        let dense = p.iter().filter(|&&x| !g.is_zero(x)).count() >= 2;
+        let a = match form {
+            ShiftForm::Folded => true,
+            ShiftForm::Direct => false,
+            ShiftForm::Sparse => dense,
+        };
+        let a = if a {
+            let e = gen3(|i, j| g.add(self.b[i][j], b[i][j]));
+            let h = gen3(|i, j| mat_entry(g, &e, &pm, i, j));
+            sym3(|i, j| {
+                if i == j {
+                    g.add(self.a[i][i], h[i][i])
+                } else {
+                    let t = g.add(h[i][j], h[j][i]);
+                    let t = g.cmul(0.5, t);
+                    g.add(self.a[i][j], t)
+                }
+            })
+        } else {
+            let bp = gen3(|i, j| mat_entry(g, &self.b, &pm, i, j));
+            sym3(|i, j| {
+                let pcp = mat_entry(g, &pc, &pm, i, j);
+                let t = g.add(bp[i][j], bp[j][i]);
+                let t = g.sub(t, pcp);
+                g.add(self.a[i][j], t)
+            })
+        };
         Self { a, b, c: self.c }
     }
+}
+
+/// How [`SymInertia::shift`] writes out `A' = A + B P + (B P)ᵀ − P C P`; the forms are equal,
+/// and which needs fewer operations depends on the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShiftForm {
+    /// As written.
+    Direct,
+    /// `A' = A + ½ (H + Hᵀ)` with `H = (B + B') P` (`(P C P)ᵀ = P C P`): fewer products
+    /// when `P` is dense, and the ½ folds into later constant factors.
+    Folded,
+    /// [`ShiftForm::Folded`] when `p` has two or more non-zero components, else
+    /// [`ShiftForm::Direct`].
+    Sparse,
 }
 
 impl JointMotion<'_> {
@@ -636,7 +671,13 @@ impl JointMotion<'_> {
     /// expressed in {J_{i−1}}. As in [`JointMotion::inertia_to_parent`], in two stages: the
     /// joint's own `Rot_z(−θ)` (`A, B, C ↦ Q A Qᵀ, Q B Qᵀ, Q C Qᵀ` with `Q = Rot_z(θ)`) or
     /// `Trans_z(−θ)` (a shift), then the constant `C_i`: shift by `p`, then rotate by `R`.
-    pub fn sym_inertia_to_parent(&self, g: &mut ExprGraph, ia: &SymInertia) -> SymInertia {
+    /// Shifts are written out as `form` says.
+    pub fn sym_inertia_to_parent(
+        &self,
+        g: &mut ExprGraph,
+        ia: &SymInertia,
+        form: ShiftForm,
+    ) -> SymInertia {
         let f = self.frame;
         let mid = match f.kind {
             JointKind::Revolute => SymInertia {
@@ -647,11 +688,11 @@ impl JointMotion<'_> {
             JointKind::Prismatic => {
                 let zero = g.zero();
                 let p = [zero, zero, g.neg(self.q)];
-                ia.shift(g, p)
+                ia.shift(g, p, form)
             }
         };
         let p = g.const3(f.p);
-        let shifted = mid.shift(g, p);
+        let shifted = mid.shift(g, p, form);
         SymInertia {
             a: rot_const_congruence(g, &f.r, &shifted.a, true),
             b: rot_const_congruence(g, &f.r, &shifted.b, false),
