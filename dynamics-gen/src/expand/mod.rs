@@ -100,26 +100,7 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
     let tau: Vec<ExprId> = (0..n).map(|i| g.input(input(TAU, i))).collect();
     let zero = g.zero();
     let zeros = vec![zero; n];
-    let motions: Vec<JointMotion<'_>> = frames
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(i, f)| {
-            // The joint variable with its home offset: θ_i + θ₀ or d_i + q_i.
-            let offset = g.constant(f.offset);
-            let angle = g.add(q[i], offset);
-            let (sin, cos) = match f.kind {
-                JointKind::Revolute => (g.sin(angle), g.cos(angle)),
-                JointKind::Prismatic => (zero, zero),
-            };
-            JointMotion {
-                frame: f,
-                sin,
-                cos,
-                q: angle,
-            }
-        })
-        .collect();
+    let motions = joint_motions(&mut g, &frames, &q);
     let no_gravity = [0.0; 3];
     let mass_matrix = crba::crba(&mut g, &motions);
     let best_rnea = |g: &mut ExprGraph, qd: &[ExprId], qdd: &[ExprId], gravity: [f64; 3]| {
@@ -178,6 +159,36 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
         forward_dynamics,
         forward_route: route,
     }
+}
+
+/// The symbolic state of every joint: `θ_i + θ₀` (or `d_i + q_i`) and, for revolute joints,
+/// its sine and cosine.
+pub(crate) fn joint_motions<'a>(
+    g: &mut ExprGraph,
+    frames: &'a frames::JointFrames,
+    q: &[ExprId],
+) -> Vec<JointMotion<'a>> {
+    let zero = g.zero();
+    frames
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            // The joint variable with its home offset: θ_i + θ₀ or d_i + q_i.
+            let offset = g.constant(f.offset);
+            let angle = g.add(q[i], offset);
+            let (sin, cos) = match f.kind {
+                JointKind::Revolute => (g.sin(angle), g.cos(angle)),
+                JointKind::Prismatic => (zero, zero),
+            };
+            JointMotion {
+                frame: f,
+                sin,
+                cos,
+                q: angle,
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]
