@@ -25,7 +25,11 @@
 //! decide: row and column `s` of `I^a_i` are zero (`I^a_i S_i = U_i − U_i D_i⁻¹ D_i = 0`),
 //! `S_iᵀ p^a_i = τ_i`, and `a_{i,s} = a'_{i,s} + θ̈_i = D_i⁻¹ (u_i − Σ_{j≠s} U_{i,j} a'_{i,j})`.
 //! One division per joint, `1/D_i`, shared by both passes.
+//!
+//! The shifts of the articulated inertias ([`ShiftForm`]) and the bias wrenches
+//! ([`LinkForce`]) can each be written out in equal forms; the caller picks the cheapest.
 
+use super::rnea::LinkForce;
 use super::spatial::{Inertia, JointMotion, ShiftForm, Spatial, SymInertia, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
@@ -62,7 +66,8 @@ fn add(g: &mut ExprGraph, x: &Spatial, y: &Spatial) -> Spatial {
 }
 
 /// `θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ))` for the symbolic `θ̇`, `τ` and gravity `gravity` in {0};
-/// the articulated inertias are shifted as `form` says.
+/// the articulated inertias are shifted as `form` says, and the bias wrenches
+/// `−[ad_{V_i}]ᵀ G_i V_i` written out as `bias` says.
 pub fn aba(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
@@ -70,6 +75,7 @@ pub fn aba(
     tau: &[ExprId],
     gravity: [f64; 3],
     form: ShiftForm,
+    bias: LinkForce,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let zero3 = g.zero3();
@@ -103,14 +109,33 @@ pub fn aba(
         let vs = g.add(get(&vi, s), qd[i]);
         set(&mut vi, s, vs);
         let gi = Inertia::constant(g, &jm.frame.inertia);
-        // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
-        let p = gi.apply(g, &vi);
-        let wk = g.cross(vi.ang, p.ang);
-        let vl = g.cross(vi.lin, p.lin);
-        let wl = g.cross(vi.ang, p.lin);
-        pa.push(Spatial {
-            ang: g.add3(wk, vl),
-            lin: wl,
+        pa.push(match bias {
+            LinkForce::Spatial => {
+                // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
+                let p = gi.apply(g, &vi);
+                let wk = g.cross(vi.ang, p.ang);
+                let vl = g.cross(vi.lin, p.lin);
+                let wl = g.cross(vi.ang, p.lin);
+                Spatial {
+                    ang: g.add3(wk, vl),
+                    lin: wl,
+                }
+            }
+            LinkForce::Classical => {
+                // The same through the classical acceleration a = ω × v of the origin (V̇ = 0):
+                // (ω × I ω + h × a, m a + ω × (ω × h)).
+                let a = g.cross(vi.ang, vi.lin);
+                let iw = gi.rotational(g, vi.ang);
+                let w_iw = g.cross(vi.ang, iw);
+                let hxa = g.cross(gi.h, a);
+                let ma = g.scale3(gi.m, a);
+                let wxh = g.cross(vi.ang, gi.h);
+                let wwh = g.cross(vi.ang, wxh);
+                Spatial {
+                    ang: g.add3(w_iw, hxa),
+                    lin: g.add3(ma, wwh),
+                }
+            }
         });
         ia.push(SymInertia::rigid(g, &gi));
         c.push(ci);

@@ -122,22 +122,22 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
     let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
     let rhs: Vec<ExprId> = (0..n).map(|i| g.sub(tau[i], bias[i])).collect();
     let by_ldlt = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
-    // The cheapest of the equal ways of writing out the articulated inertias' shifts (ties
-    // keep the earlier one).
-    let mut by_aba = aba::aba(
-        &mut g,
-        &motions,
-        &qd,
-        &tau,
-        frames.gravity,
-        ShiftForm::Direct,
-    );
-    for form in [ShiftForm::Folded, ShiftForm::Sparse] {
-        let candidate = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity, form);
-        if g.op_counts(&candidate).total() < g.op_counts(&by_aba).total() {
-            by_aba = candidate;
+    // The cheapest of the equal ways of writing out the articulated inertias' shifts and
+    // the bias wrenches (ties keep the earlier one).
+    let mut by_aba: Option<Vec<ExprId>> = None;
+    for bias in [LinkForce::Spatial, LinkForce::Classical] {
+        for form in [ShiftForm::Direct, ShiftForm::Folded, ShiftForm::Sparse] {
+            let candidate = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity, form, bias);
+            let better = match &by_aba {
+                None => true,
+                Some(best) => g.op_counts(&candidate).total() < g.op_counts(best).total(),
+            };
+            if better {
+                by_aba = Some(candidate);
+            }
         }
     }
+    let by_aba = by_aba.unwrap_or_default();
     let route = route.unwrap_or_else(|| {
         if g.op_counts(&by_aba).total() < g.op_counts(&by_ldlt).total() {
             ForwardRoute::Aba
