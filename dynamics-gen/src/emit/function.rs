@@ -230,6 +230,20 @@ impl FunctionBody<'_> {
         }
     }
 
+    /// For an inline product `(−c)·x` with a negative constant, the tokens of `c·x`.
+    fn negated_product(&self, bind: &[Binding], id: ExprId) -> Option<TokenStream> {
+        if !matches!(bind[id.index()], Binding::Inline) {
+            return None;
+        }
+        let Node::Mul(k, x) = *self.graph.node(id) else {
+            return None;
+        };
+        let c = self.graph.as_const(k).filter(|c| *c < 0.0)?;
+        let c = float_tokens(-c, self.scalar);
+        let x = self.operand(bind, x, 3);
+        Some(quote!(#c * #x))
+    }
+
     fn op(&self, bind: &[Binding], node: &Node) -> TokenStream {
         match *node {
             Node::Const(c) => float_tokens(c.value(), self.scalar),
@@ -242,10 +256,19 @@ impl FunctionBody<'_> {
                 quote!(-#a)
             }
             Node::Add(a, b) => {
+                // `a + (−c)·x` reads better as `a − c·x` (negation is exact).
+                if let Some(t) = self.negated_product(bind, b) {
+                    let a = self.operand(bind, a, 1);
+                    return quote!(#a - #t);
+                }
                 let (a, b) = (self.operand(bind, a, 1), self.operand(bind, b, 2));
                 quote!(#a + #b)
             }
             Node::Sub(a, b) => {
+                if let Some(t) = self.negated_product(bind, b) {
+                    let a = self.operand(bind, a, 1);
+                    return quote!(#a + #t);
+                }
                 let (a, b) = (self.operand(bind, a, 1), self.operand(bind, b, 2));
                 quote!(#a - #b)
             }
