@@ -166,17 +166,24 @@ pub use generated::CASES;
 
 include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
 
-/// ‖x − y‖∞ / (‖y‖∞ + atol/rtol): the relative error measure of the acceptance criteria.
-pub fn rel_err(x: &[f64], y: &[f64], atol: f64) -> f64 {
+/// `(‖x − y‖∞, ‖y‖∞)`.
+pub fn max_error(x: &[f64], y: &[f64]) -> (f64, f64) {
     assert_eq!(x.len(), y.len(), "sizes differ");
     let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let err = x
         .iter()
         .zip(y)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    if err == 0.0 {
-        0.0
-    } else {
-        err / (scale + atol)
-    }
+    (err, scale)
+}
+
+/// Asserts the acceptance criterion `‖x − y‖∞ ≤ rtol·‖y‖∞ + atol`, naming `what` on failure;
+/// returns `(‖x − y‖∞, ‖y‖∞)`.
+pub fn assert_close(what: &str, x: &[f64], y: &[f64], rtol: f64, atol: f64) -> (f64, f64) {
+    let (err, scale) = max_error(x, y);
+    assert!(
+        err <= rtol * scale + atol,
+        "{what}: error {err:e} > {rtol:e}·{scale:e} + {atol:e}\n got {x:?}\nwant {y:?}"
+    );
+    (err, scale)
 }

@@ -9,17 +9,8 @@ use dynamics_tests::{Case, CASES};
 use nalgebra::{DVector, Vector6};
 
 fn check(case: &Case, what: &str, x: &[f64], y: &[f64], rtol: f64, atol: f64) -> f64 {
-    assert_eq!(x.len(), y.len());
-    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let err = x
-        .iter()
-        .zip(y)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(
-        err <= rtol * scale + atol,
-        "{} {what}: error {err:e} > {rtol:e}·{scale:e} + {atol:e}\n got {x:?}\nwant {y:?}",
-        case.module
-    );
+    let what = format!("{} {what}", case.module);
+    let (err, scale) = dynamics_tests::assert_close(&what, x, y, rtol, atol);
     err / scale.max(1e-300)
 }
 

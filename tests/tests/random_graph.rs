@@ -8,15 +8,8 @@ use dynamics_model::random::{random_chain, ChainSpec, Rng};
 use nalgebra::Vector6;
 
 fn check(seed: u64, what: &str, x: &[f64], y: &[f64]) -> f64 {
-    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let err = x
-        .iter()
-        .zip(y)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(
-        err <= 1e-10 * scale + 1e-12,
-        "chain {seed} {what}: error {err:e} (scale {scale:e})"
-    );
+    let what = format!("chain {seed} {what}");
+    let (err, scale) = dynamics_tests::assert_close(&what, x, y, 1e-10, 1e-12);
     err / (1e-10 * scale + 1e-12)
 }
 
@@ -25,11 +18,7 @@ fn check(seed: u64, what: &str, x: &[f64], y: &[f64]) -> f64 {
 fn check_fd(seed: u64, x: &[f64], y: &[f64], m: &nalgebra::DMatrix<f64>) -> f64 {
     let eig = m.clone().symmetric_eigen().eigenvalues;
     let cond = eig.max() / eig.min();
-    let scale = y.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let err = x
-        .iter()
-        .zip(y)
-        .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+    let (err, scale) = dynamics_tests::max_error(x, y);
     assert!(
         err <= 1e-10 * scale + 1e-12,
         "chain {seed} q̈: error {err:e} (scale {scale:e}, cond(M) {cond:e})"

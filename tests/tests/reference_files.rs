@@ -31,16 +31,7 @@ fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
 }
 
 fn check(what: &str, x: &[f64], y: &[f64]) -> f64 {
-    assert_eq!(x.len(), y.len(), "{what}: sizes");
-    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let err = x
-        .iter()
-        .zip(y)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(
-        err <= 1e-9 * scale + 1e-12,
-        "{what}: error {err:e} (scale {scale:e})\n got {x:?}\nwant {y:?}"
-    );
+    let (err, scale) = dynamics_tests::assert_close(what, x, y, 1e-9, 1e-12);
     err / scale.max(1e-300)
 }
 
