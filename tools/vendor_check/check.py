@@ -275,6 +275,16 @@ dynamics-macros = {{ path = "{macros}" }}
 """
 
 
+def write_files(crate, files):
+    """Writes each file only when its text changed (so cargo rebuilds only what changed)."""
+    for name, text in files.items():
+        p = os.path.join(crate, name)
+        old = open(p).read() if os.path.exists(p) else None
+        if old != text:
+            with open(p, "w") as f:
+                f.write(text)
+
+
 def write_derive_crate(crate, macros_path, robots):
     """The same scratch crate, with `#[derive(Dynamics)]` instead of build.rs."""
     os.makedirs(os.path.join(crate, "src"), exist_ok=True)
@@ -293,12 +303,7 @@ def write_derive_crate(crate, macros_path, robots):
         "src/main.rs": (MAIN_RS_HEAD + "".join(mods) + MAIN_RS_EVAL + "".join(arms)
                         + '            other => panic!("unknown robot {other}"),\n        };\n        println!("{out}");\n    }\n}\n'),
     }
-    for name, text in files.items():
-        p = os.path.join(crate, name)
-        old = open(p).read() if os.path.exists(p) else None
-        if old != text:
-            with open(p, "w") as f:
-                f.write(text)
+    write_files(crate, files)
 
 
 def write_crate(crate, gen_path, robots):
@@ -321,12 +326,7 @@ def write_crate(crate, gen_path, robots):
     files["build.rs"] = "".join(b)
     files["src/main.rs"] = (MAIN_RS_HEAD + "".join(mods) + MAIN_RS_EVAL + "".join(arms)
                             + '            other => panic!("unknown robot {other}"),\n        };\n        println!("{out}");\n    }\n}\n')
-    for name, text in files.items():
-        p = os.path.join(crate, name)
-        old = open(p).read() if os.path.exists(p) else None
-        if old != text:
-            with open(p, "w") as f:
-                f.write(text)
+    write_files(crate, files)
 
 
 def cargo_build(crate, target_dir, jobs):

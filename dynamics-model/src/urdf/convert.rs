@@ -138,19 +138,7 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
             )]);
         }
     };
-    for (field, v) in [
-        ("origin.xyz", j.origin.xyz.0),
-        ("origin.rpy", j.origin.rpy.0),
-    ] {
-        if !all_finite(&v) {
-            errors.push(Invalid::new(
-                subject(),
-                field,
-                format!("not finite: {v:?}"),
-                "give three finite numbers",
-            ));
-        }
-    }
+    check_origin(&subject, "origin", &j.origin, &mut errors);
     let transform = origin_transform(&j.origin);
     let Some(kind) = kind else {
         return if errors.is_empty() {
@@ -304,19 +292,7 @@ pub fn link(l: &urdf_rs::Link) -> Result<LinkModel, Vec<Invalid>> {
     );
     let mass = inertial.mass.value;
     let mut errors = Vec::new();
-    for (field, v) in [
-        ("inertial.origin.xyz", inertial.origin.xyz.0),
-        ("inertial.origin.rpy", inertial.origin.rpy.0),
-    ] {
-        if !all_finite(&v) {
-            errors.push(Invalid::new(
-                subject(),
-                field,
-                format!("not finite: {v:?}"),
-                "give three finite numbers",
-            ));
-        }
-    }
+    check_origin(&subject, "inertial.origin", &inertial.origin, &mut errors);
     if !mass.is_finite() {
         errors.push(Invalid::new(
             subject(),
@@ -354,4 +330,23 @@ pub fn link(l: &urdf_rs::Link) -> Result<LinkModel, Vec<Invalid>> {
         inertia: tensor,
         com_frame: origin_transform(&inertial.origin),
     })
+}
+
+/// Reports a non-finite `xyz` or `rpy` of an `<origin>` as `{field}.xyz` / `{field}.rpy`.
+fn check_origin(
+    subject: &dyn Fn() -> Subject,
+    field: &str,
+    origin: &urdf_rs::Pose,
+    errors: &mut Vec<Invalid>,
+) {
+    for (part, v) in [("xyz", origin.xyz.0), ("rpy", origin.rpy.0)] {
+        if !all_finite(&v) {
+            errors.push(Invalid::new(
+                subject(),
+                format!("{field}.{part}"),
+                format!("not finite: {v:?}"),
+                "give three finite numbers",
+            ));
+        }
+    }
 }
