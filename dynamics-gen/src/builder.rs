@@ -7,9 +7,13 @@
 //!     .name("MyArm")
 //!     .no_std(true)
 //!     .lock("gripper_joint", 0.0)
-//!     .compile()
-//!     .unwrap_or_else(|e| panic!("{e}"));
+//!     .compile_or_report();                        // errors as Cargo errors, no backtrace
 //! ```
+//!
+//! The builder is owned: `let b = Builder::new("ur5").no_std(true);` can be stored, cloned
+//! and reused. [`Builder::compile`] returns the error for the build script to handle;
+//! [`Builder::compile_or_report`] prints it as `cargo::error=` lines (Cargo shows them as an
+//! error of the build script and fails the build, without a panic backtrace).
 //!
 //! ```ignore
 //! // src/lib.rs
@@ -60,57 +64,58 @@ impl Builder {
     }
 
     /// The generated struct's name (default: the robot's name in UpperCamelCase).
-    pub fn name(&mut self, name: impl Into<String>) -> &mut Self {
+    pub fn name(mut self, name: impl Into<String>) -> Self {
         self.options.name = Some(name.into());
         self
     }
 
     /// The scalar type of the generated code (default `f64`).
-    pub fn scalar(&mut self, scalar: Scalar) -> &mut Self {
+    pub fn scalar(mut self, scalar: Scalar) -> Self {
         self.options.scalar = scalar;
         self
     }
 
-    /// Emit `no_std` code (trigonometry through `::libm`, so the crate must depend on `libm`).
-    pub fn no_std(&mut self, no_std: bool) -> &mut Self {
+    /// Emit `no_std` code (trigonometry through `::libm`, so the crate must depend on `libm`;
+    /// [`Builder::write`] warns when the crate's `Cargo.toml` declares no `libm` dependency).
+    pub fn no_std(mut self, no_std: bool) -> Self {
         self.options.no_std = no_std;
         self
     }
 
     /// Replaces the robot's gravity vector (in the base frame {0}, m/s²).
-    pub fn gravity(&mut self, gravity: [f64; 3]) -> &mut Self {
+    pub fn gravity(mut self, gravity: [f64; 3]) -> Self {
         self.options.load.gravity = Some(Vector3::from(gravity));
         self
     }
 
     /// URDF: the link whose frame is the end-effector frame {n+1}.
-    pub fn tip(&mut self, link: impl Into<String>) -> &mut Self {
+    pub fn tip(mut self, link: impl Into<String>) -> Self {
         self.options.load.tip = Some(link.into());
         self
     }
 
     /// URDF: locks the movable joint `joint` at `value` (rad or m), making it fixed. May be
     /// called several times.
-    pub fn lock(&mut self, joint: impl Into<String>, value: f64) -> &mut Self {
+    pub fn lock(mut self, joint: impl Into<String>, value: f64) -> Self {
         self.options.load.lock.push((joint.into(), value));
         self
     }
 
     /// The path of the nalgebra crate in the generated code (default `::nalgebra`).
-    pub fn nalgebra_path(&mut self, path: impl Into<String>) -> &mut Self {
+    pub fn nalgebra_path(mut self, path: impl Into<String>) -> Self {
         self.options.nalgebra_path = path.into();
         self
     }
 
     /// The generated file's name in the output directory (default `<robot>.rs`, where
     /// `<robot>` is the robot file's stem or the shipped robot's name).
-    pub fn out_file(&mut self, file_name: impl Into<String>) -> &mut Self {
+    pub fn out_file(mut self, file_name: impl Into<String>) -> Self {
         self.out_file = Some(file_name.into());
         self
     }
 
     /// The output directory (default: the `OUT_DIR` cargo gives build scripts).
-    pub fn out_dir(&mut self, dir: impl Into<PathBuf>) -> &mut Self {
+    pub fn out_dir(mut self, dir: impl Into<PathBuf>) -> Self {
         self.out_dir = Some(dir.into());
         self
     }
@@ -128,12 +133,64 @@ impl Builder {
     /// The formatted generated file, without touching the file system (beyond reading the
     /// robot file) or printing anything.
     pub fn generate(&self) -> Result<String, Error> {
-        let (robot, source) = self.load_with_source()?;
-        let header_source = match &source {
+        if let Some(name) = &self.options.name {
+            crate::options::check_struct_name(name)?;
+        }
+        let (robot, source, bytes) = self.load_with_source()?;
+        let name = match &source {
             Source::File { given, .. } => given.clone(),
-            Source::Shipped(name) => format!("shipped robot `{name}`"),
+            Source::Shipped(name) => format!("shipped robot {name}"),
         };
-        crate::emit::generate_file(&robot, &self.options, &header_source)
+        let provenance = crate::Provenance::of_bytes(name, bytes.as_bytes())
+            .command(format!("cargo build (build.rs: {})", self.call()));
+        crate::emit::generate_file(&robot, &self.options, provenance)
+    }
+
+    /// The builder as the Rust call chain that makes it, for the generated header.
+    fn call(&self) -> String {
+        let o = &self.options;
+        let mut s = format!(
+            "dynamics_gen::Builder::new({:?})",
+            crate::emit::provenance::portable(&self.robot)
+        );
+        if let Some(name) = &o.name {
+            s += &format!(".name({name:?})");
+        }
+        if o.scalar != Scalar::F64 {
+            s += &format!(".scalar(Scalar::{:?})", o.scalar);
+        }
+        if o.no_std {
+            s += ".no_std(true)";
+        }
+        if let Some(g) = o.load.gravity {
+            s += &format!(".gravity([{:?}, {:?}, {:?}])", g[0], g[1], g[2]);
+        }
+        if let Some(tip) = &o.load.tip {
+            s += &format!(".tip({tip:?})");
+        }
+        for (joint, value) in &o.load.lock {
+            s += &format!(".lock({joint:?}, {value:?})");
+        }
+        if o.nalgebra_path != Options::default().nalgebra_path {
+            s += &format!(".nalgebra_path({:?})", o.nalgebra_path);
+        }
+        s + ".compile()"
+    }
+
+    /// [`Builder::compile`] for a build script that should fail the way Cargo reports
+    /// errors: on error, every line of the message is printed as `cargo::error=…` (Cargo
+    /// shows it under the crate's name and fails the build) and `None` is returned; no panic,
+    /// no backtrace.
+    pub fn compile_or_report(&self) -> Option<PathBuf> {
+        match self.compile() {
+            Ok(path) => Some(path),
+            Err(e) => {
+                for line in e.to_string().lines() {
+                    println!("cargo::error={line}");
+                }
+                None
+            }
+        }
     }
 
     /// Generates the file into the output directory, rewriting it only when its content
@@ -155,6 +212,13 @@ impl Builder {
         write_if_changed(&path, &code)?;
         if let Source::File { path: robot, .. } = &source {
             println!("cargo:rerun-if-changed={}", robot.display());
+        }
+        if self.options.no_std {
+            if let Some(hint) = std::env::var_os("CARGO_MANIFEST_DIR")
+                .and_then(|dir| crate::manifest::missing_dependency(Path::new(&dir), "libm"))
+            {
+                println!("cargo::warning={hint}");
+            }
         }
         Ok(path)
     }
@@ -194,10 +258,17 @@ impl Builder {
         }
     }
 
-    fn load_with_source(&self) -> Result<(Robot, Source), Error> {
+    /// The robot, where it came from, and the text it was read from.
+    fn load_with_source(&self) -> Result<(Robot, Source, String), Error> {
         let source = self.resolve();
+        let mut bytes = String::new();
         let robot = match &source {
-            Source::Shipped(name) => load::load(name, &self.options.load)?,
+            Source::Shipped(name) => {
+                bytes = shipped::get(name)
+                    .map(|s| s.text.to_string())
+                    .unwrap_or_default();
+                load::load(name, &self.options.load)?
+            }
             Source::File { given, path } => {
                 let looks_like_file = Format::from_path(path).is_some()
                     || given.contains('/')
@@ -216,11 +287,13 @@ impl Builder {
                         message: e.to_string(),
                     })?;
                     // Named as given, so the generated file does not depend on the machine.
-                    load::from_str(&text, format, given, &self.options.load)?
+                    let robot = load::from_str(&text, format, given, &self.options.load)?;
+                    bytes = text;
+                    robot
                 }
             }
         };
-        Ok((robot, source))
+        Ok((robot, source, bytes))
     }
 }
 
@@ -261,7 +334,10 @@ mod tests {
     fn shipped_name_generates_a_header_naming_it() {
         let code = Builder::new("pendulum").no_std(true).generate().unwrap();
         assert!(code.starts_with("// @generated by dynamics-gen"), "{code}");
-        assert!(code.contains("shipped robot `pendulum`"));
+        assert!(
+            code.contains("Source: `shipped robot pendulum` (sha256 "),
+            "{code}"
+        );
         assert!(code.contains("::libm::"));
     }
 
@@ -284,8 +360,7 @@ mod tests {
     #[test]
     fn write_uses_the_default_file_name_and_keeps_an_unchanged_file() {
         let dir = temp_dir("write");
-        let mut b = Builder::new("pendulum");
-        b.out_dir(&dir).name("Pend");
+        let b = Builder::new("pendulum").out_dir(&dir).name("Pend");
         let path = b.write().unwrap();
         assert_eq!(path, dir.join("pendulum.rs"));
         let code = std::fs::read_to_string(&path).unwrap();
@@ -297,7 +372,7 @@ mod tests {
             std::fs::metadata(&path).unwrap().modified().unwrap(),
             modified
         );
-        let other = b.out_file("p.rs").write().unwrap();
+        let other = b.clone().out_file("p.rs").write().unwrap();
         assert_eq!(other, dir.join("p.rs"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
@@ -308,10 +383,13 @@ mod tests {
         let robot = dir.join("my_pendulum.toml");
         std::fs::write(&robot, shipped::get("pendulum").unwrap().text).unwrap();
         let given = robot.to_str().unwrap().to_string();
-        let mut b = Builder::new(given.clone());
-        b.out_dir(&dir);
+        let b = Builder::new(given.clone()).out_dir(&dir);
         let code = b.generate().unwrap();
-        assert!(code.contains(&format!("from {given} ")), "{code}");
+        assert!(
+            code.contains("Source: `my_pendulum.toml` (sha256 "),
+            "{code}"
+        );
+        assert!(!code.contains(dir.to_str().unwrap()), "{code}");
         assert!(code.contains("pub struct Pendulum;"));
         assert_eq!(b.write().unwrap(), dir.join("my_pendulum.rs"));
         std::fs::write(&robot, "name = ").unwrap();

@@ -9,13 +9,13 @@ pub enum Error {
     /// The robot description could not be read, parsed or validated.
     #[error(transparent)]
     Model(#[from] ModelError),
-    /// The struct name is not a Rust identifier.
-    #[error(
-        "`{name}` is not a valid Rust struct name; give a name like `Ur5` with --name / .name()"
-    )]
+    /// The struct name is not a Rust identifier in UpperCamelCase.
+    #[error("`{name}` is not a valid struct name: {hint} (--name / .name())")]
     InvalidName {
         /// The name given.
         name: String,
+        /// What is wrong and the fix.
+        hint: String,
     },
     /// The nalgebra path is not a Rust path.
     #[error(

@@ -12,11 +12,12 @@ pub mod error;
 pub mod expand;
 pub mod expr;
 pub mod macro_support;
+pub mod manifest;
 pub mod options;
 pub mod stats;
 
 pub use builder::{compile_robot, Builder};
 pub use dynamics_model;
-pub use emit::{generate_file, generate_impl, Generated};
+pub use emit::{generate_file, generate_impl, Generated, Provenance};
 pub use error::Error;
 pub use options::{Options, Scalar};

@@ -60,24 +60,77 @@ impl Default for Options {
     }
 }
 
-/// `ur5` → `Ur5`, `mr_3link` → `Mr3link`, `double-pendulum` → `DoublePendulum`.
+/// The struct name derived from a robot's name: UpperCamelCase from its ASCII letters and
+/// digits (word boundaries at `_`, `-`, spaces and case changes, as `heck` finds them):
+/// `ur5` → `Ur5`, `mr_3link` → `Mr3link`, `double-pendulum` → `DoublePendulum`,
+/// `UFROBOT` → `Ufrobot`, `xArm7` → `XArm7`. A name that would start with a digit, be
+/// empty, or be `Self` gets the prefix or suffix `Robot`.
 pub fn upper_camel(name: &str) -> String {
-    let mut out = String::new();
-    let mut upper = true;
-    for ch in name.chars() {
-        if ch.is_ascii_alphanumeric() {
-            if upper {
-                out.extend(ch.to_uppercase());
-            } else {
-                out.push(ch);
-            }
-            upper = false;
-        } else {
-            upper = true;
-        }
-    }
+    use heck::ToUpperCamelCase;
+    let ascii: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { ' ' })
+        .collect();
+    let mut out = ascii.to_upper_camel_case();
     if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
         out.insert_str(0, "Robot");
     }
+    if out == "Self" {
+        out.push_str("Robot");
+    }
     out
+}
+
+/// Checks a struct name given with `--name` or `.name(..)`: a Rust identifier in
+/// UpperCamelCase (`Ur5`, not `ur5`), so the generated type reads like every other type.
+pub fn check_struct_name(name: &str) -> Result<(), crate::Error> {
+    let is_ident = syn::parse_str::<proc_macro2::Ident>(name).is_ok();
+    let camel = upper_camel(name);
+    if is_ident && camel == name {
+        return Ok(());
+    }
+    let suggestion = if is_ident || camel != "Robot" {
+        format!("; did you mean `{camel}`?")
+    } else {
+        String::new()
+    };
+    Err(crate::Error::InvalidName {
+        name: name.to_string(),
+        hint: format!("a struct name is an identifier in UpperCamelCase{suggestion}"),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn derived_names_are_upper_camel_case() {
+        for (name, want) in [
+            ("ur5", "Ur5"),
+            ("mr_3link", "Mr3link"),
+            ("double-pendulum", "DoublePendulum"),
+            ("UFROBOT", "Ufrobot"),
+            ("panda_arm_hand", "PandaArmHand"),
+            ("xArm7", "XArm7"),
+            ("7dof", "Robot7dof"),
+            ("", "Robot"),
+            ("ü", "Robot"),
+            ("self", "SelfRobot"),
+            ("a\nfn x() {}", "AFnX"),
+        ] {
+            assert_eq!(upper_camel(name), want, "{name}");
+        }
+    }
+
+    #[test]
+    fn given_names_must_be_upper_camel_identifiers() {
+        assert!(check_struct_name("Ur5").is_ok());
+        assert!(check_struct_name("MyArm").is_ok());
+        let e = check_struct_name("ur5").unwrap_err().to_string();
+        assert!(e.contains("did you mean `Ur5`"), "{e}");
+        let e = check_struct_name("my arm").unwrap_err().to_string();
+        assert!(e.contains("`MyArm`"), "{e}");
+        assert!(check_struct_name("fn").is_err());
+    }
 }

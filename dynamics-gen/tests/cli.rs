@@ -271,7 +271,11 @@ fn errors_are_one_line_with_exit_code_1() {
         ),
         (
             &["generate", "pendulum", "--name", "not a name"][..],
-            "error: `not a name` is not a valid Rust struct name",
+            "error: `not a name` is not a valid struct name",
+        ),
+        (
+            &["generate", "ur5", "--name", "ur5"][..],
+            "did you mean `Ur5`?",
         ),
     ] {
         let out = run(args);

@@ -4,6 +4,7 @@
 //! |---|---|
 //! | every number finite | exact |
 //! | revolute: `|ω| = 1` | [`UNIT_TOL`] |
+//! | revolute: no pitch, `ω · v = 0` (so `v = −ω × q`) | [`UNIT_TOL`] · max(1, `|v|`) |
 //! | prismatic: `ω = 0`, `|v| = 1` | [`UNIT_TOL`] |
 //! | home frames rigid: `RᵀR = 1`, `det R = 1`, last row `(0, 0, 0, 1)` | [`ORTHO_TOL`] |
 //! | `G_i` symmetric, lower-right block `m·1₃`, off-diagonal block `m[c]` (skew) | [`INERTIA_TOL`] · scale |
@@ -130,6 +131,18 @@ pub fn check_screw(subject: Subject, kind: JointKind, s: &nalgebra::Vector6<f64>
                     format!("a revolute joint needs |ω| = 1, but |ω| = {w}"),
                     "normalise the axis direction ω (and v = −ω × q with it), or give `axis` and `point` instead",
                 ));
+            } else {
+                let pitch = angular(s).dot(&linear(s));
+                if pitch.abs() > UNIT_TOL * v.max(1.0) {
+                    errors.push(Invalid::new(
+                        subject,
+                        "screw",
+                        format!(
+                            "a revolute joint's screw has no pitch (ω · v = 0), but ω · v = {pitch}: this is a helical (screw) joint, which is not supported"
+                        ),
+                        "for a rotation about the axis ω through the point q write v = −ω × q (or give `axis` and `point` instead of `screw`)",
+                    ));
+                }
             }
         }
         JointKind::Prismatic => {

@@ -599,3 +599,48 @@ fn never_panics_on_truncated_or_mangled_files() {
         let _ = from_str(&s, Format::Toml, FILE, &LoadOptions::default());
     }
 }
+
+#[test]
+fn revolute_screw_with_pitch_is_refused() {
+    let msg = invalid(
+        &edit("screw = [0, 0, 1, 0, 0, 0]", "screw = [0, 0, 1, 0, 0, 1]"),
+        "joint `j1`",
+        "screw",
+        "ω · v = 1",
+    );
+    assert!(msg.contains("v = −ω × q"), "{msg}");
+    // A screw through a point off the origin has v = −ω × q ≠ 0 and no pitch: accepted.
+    from_str(
+        &edit(
+            "screw = [0, 0, 1, 0, 0, 0]",
+            "screw = [0, 0, 1, 0.3, -0.2, 0]",
+        ),
+        Format::Toml,
+        FILE,
+        &LoadOptions::default(),
+    )
+    .expect("a pitch-free screw off the origin is valid");
+}
+
+#[test]
+fn actuation_and_friction_fields_are_refused_until_modelled() {
+    for (key, value) in [
+        ("damping", "0.5"),
+        ("friction", "0.1"),
+        ("rotor_inertia", "1e-4"),
+        ("gear_ratio", "100"),
+    ] {
+        let text = edit(
+            "screw = [0, 0, 1, 0, 0, 0]",
+            &format!("screw = [0, 0, 1, 0, 0, 0]\n{key} = {value}"),
+        );
+        let msg = invalid(&text, "joint `j1`", key, "not part of the dynamics yet");
+        assert!(msg.contains(&format!("remove `{key}`")), "{msg}");
+    }
+    // The neutral values are accepted: they change nothing.
+    let text = edit(
+        "screw = [0, 0, 1, 0, 0, 0]",
+        "screw = [0, 0, 1, 0, 0, 0]\ndamping = 0\nfriction = 0.0\nrotor_inertia = 0\ngear_ratio = 1",
+    );
+    from_str(&text, Format::Toml, FILE, &LoadOptions::default()).expect("neutral values load");
+}

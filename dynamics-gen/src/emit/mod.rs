@@ -7,14 +7,18 @@
 
 pub mod function;
 pub mod literal;
+pub mod provenance;
+pub mod text;
 
 use crate::error::Error;
-use crate::expand::{self, Dynamics, Q, QD, QDD, TAU};
+use crate::expand::{self, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use crate::options::{upper_camel, Options, Scalar};
 use dynamics_model::Robot;
 use function::{Arg, FunctionBody};
 use proc_macro2::{Ident, Span, TokenStream};
+pub use provenance::Provenance;
 use quote::quote;
+use text::inert;
 
 /// The version of the generator, written into every generated header.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -29,6 +33,8 @@ pub struct Generated {
     pub struct_item: TokenStream,
     /// The expansion (for statistics).
     pub dynamics: Dynamics,
+    /// The robot as generated: validated, with the gravity override applied.
+    pub robot: Robot,
 }
 
 /// The robot as the generator sees it: validated, with the gravity override applied.
@@ -55,6 +61,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         .unwrap_or_else(|| upper_camel(&robot.name));
     let ident = syn::parse_str::<Ident>(&struct_name).map_err(|_| Error::InvalidName {
         name: struct_name.clone(),
+        hint: "not a Rust identifier; give a name like `Ur5`".into(),
     })?;
     let nalgebra: TokenStream = syn::parse_str::<syn::Path>(&options.nalgebra_path)
         .map(|p| quote!(#p))
@@ -112,14 +119,21 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         " Gravity: ({}, {}, {}) m/s² in the base frame {{0}}, folded into the code.",
         robot.gravity[0], robot.gravity[1], robot.gravity[2]
     );
+    let forward_doc = match dynamics.forward_route {
+        ForwardRoute::Ldlt => " Method: the mass matrix by the composite-rigid-body algorithm, the bias `c + g` by Newton–Euler, then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per joint). Chosen over the articulated-body algorithm because it needs fewer operations for this robot.",
+        ForwardRoute::Aba => " Method: Featherstone's articulated-body algorithm, unrolled (one division per joint). Chosen over CRBA + LDLᵀ because it needs fewer operations for this robot.",
+    };
+    let limits = limit_consts(&robot, options.scalar, n_usize);
     let allow = allow_attrs();
     let impl_block = quote! {
         #allow
+        #[rustfmt::skip]
         impl #ident {
             /// The number of joints n: the length of every joint vector.
             pub const DOF: usize = #n;
             /// The joint names, in the order of every vector and matrix index.
             pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
+            #limits
 
             /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
             /// by joint types), by the composite-rigid-body algorithm.
@@ -163,8 +177,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
                 #inverse
             }
 
-            /// Forward dynamics `q̈ = M(q)⁻¹ (τ − c(q, q̇) − g(q))`, by an unrolled LDLᵀ
-            /// factorisation of `M` (no pivoting, no explicit inverse).
+            /// Forward dynamics `q̈ = M(q)⁻¹ (τ − c(q, q̇) − g(q))`.
+            #[doc = ""]
+            #[doc = #forward_doc]
             #[doc = ""]
             #[doc = #gravity_doc]
             #[doc = #units]
@@ -179,6 +194,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let struct_item = quote! {
         #(#[doc = #struct_doc])*
         #allow
+        #[rustfmt::skip]
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #ident;
     };
@@ -187,13 +203,22 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         impl_block,
         struct_item,
         dynamics,
+        robot,
     })
 }
 
-/// The whole generated file: `@generated` header, struct, impl, formatted with prettyplease.
-/// `source` names the robot file in the header.
-pub fn generate_file(robot: &Robot, options: &Options, source: &str) -> Result<String, Error> {
+/// The whole generated file: `@generated` header (how it was made: generator version,
+/// source, input hash, every option, the command that regenerates it), struct, impl,
+/// formatted with prettyplease. `provenance` names the source; a plain `&str` is taken as
+/// the source's name.
+pub fn generate_file(
+    robot: &Robot,
+    options: &Options,
+    provenance: impl Into<Provenance>,
+) -> Result<String, Error> {
+    let provenance = provenance.into();
     let generated = generate_impl(robot, options)?;
+    let header = provenance.header(&generated, options);
     let Generated {
         struct_item,
         impl_block,
@@ -202,13 +227,7 @@ pub fn generate_file(robot: &Robot, options: &Options, source: &str) -> Result<S
     let file: syn::File = syn::parse2(quote!(#struct_item #impl_block))
         .map_err(|e| Error::Internal(format!("generated code does not parse: {e}")))?;
     let body = prettyplease::unparse(&file);
-    Ok(format!(
-        "// @generated by dynamics-gen {VERSION} from {source} (robot `{}`, {} joints, {}{}).\n// Do not edit: regenerate instead.\n\n{body}",
-        robot.name,
-        robot.dof(),
-        options.scalar.as_str(),
-        if options.no_std { ", no_std" } else { "" },
-    ))
+    Ok(format!("{header}\n{body}"))
 }
 
 fn allow_attrs() -> TokenStream {
@@ -231,14 +250,54 @@ fn allow_attrs() -> TokenStream {
     }
 }
 
+/// `POSITION_LIMITS`, `VELOCITY_LIMITS`, `EFFORT_LIMITS`: ±∞ where the robot file gives none.
+fn limit_consts(robot: &Robot, scalar: Scalar, n: usize) -> TokenStream {
+    let ty = scalar.ident();
+    let n = proc_macro2::Literal::usize_unsuffixed(n);
+    let value = |v: Option<f64>, sign: f64| match v {
+        Some(v) => literal::float_tokens(v, scalar),
+        None if sign < 0.0 => quote!(#ty::NEG_INFINITY),
+        None => quote!(#ty::INFINITY),
+    };
+    let limits = |j: &dynamics_model::Joint| j.limits;
+    let position: Vec<TokenStream> = robot
+        .joints
+        .iter()
+        .map(|j| {
+            let lo = value(limits(j).map(|l| l.lower), -1.0);
+            let hi = value(limits(j).map(|l| l.upper), 1.0);
+            quote!([#lo, #hi])
+        })
+        .collect();
+    let velocity: Vec<TokenStream> = robot
+        .joints
+        .iter()
+        .map(|j| value(limits(j).and_then(|l| l.velocity), 1.0))
+        .collect();
+    let effort: Vec<TokenStream> = robot
+        .joints
+        .iter()
+        .map(|j| value(limits(j).and_then(|l| l.effort), 1.0))
+        .collect();
+    quote! {
+        /// Position limits `[lower, upper]` per joint (rad or m), from the robot file;
+        /// `[-∞, ∞]` for a joint without limits (continuous).
+        pub const POSITION_LIMITS: [[#ty; 2]; #n] = [#(#position),*];
+        /// Velocity limits per joint (rad/s or m/s), from the robot file; `∞` where none is given.
+        pub const VELOCITY_LIMITS: [#ty; #n] = [#(#velocity),*];
+        /// Effort limits per joint (N·m or N), from the robot file; `∞` where none is given.
+        pub const EFFORT_LIMITS: [#ty; #n] = [#(#effort),*];
+    }
+}
+
 fn unit_doc(robot: &Robot) -> String {
     let kinds: Vec<String> = robot
         .joints
         .iter()
         .map(|j| {
             format!(
-                "`{}` ({})",
-                j.name,
+                "{} ({})",
+                inert(&j.name),
                 match j.kind {
                     dynamics_model::JointKind::Revolute => "revolute: rad, N·m",
                     dynamics_model::JointKind::Prismatic => "prismatic: m, N",
@@ -252,12 +311,12 @@ fn unit_doc(robot: &Robot) -> String {
 fn struct_doc(robot: &Robot, options: &Options) -> Vec<String> {
     vec![
         format!(
-            " Rigid-body dynamics of `{}` ({} joints), generated by dynamics-gen {VERSION}.",
-            robot.name,
+            " Rigid-body dynamics of {} ({} joints), generated by dynamics-gen {VERSION}.",
+            inert(&robot.name),
             robot.dof()
         ),
         String::new(),
-        format!(" Source: `{}`.", robot.source),
+        format!(" Source: {}.", inert(&provenance::portable(&robot.source))),
         String::new(),
         " Conventions (Modern Robotics, chapter 8): SI units (m, kg, s, rad); joint vectors in the"
             .into(),

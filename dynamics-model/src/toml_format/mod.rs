@@ -23,10 +23,10 @@
 //! limits = [-3.14, 3.14]           # optional [lower, upper] (rad or m); absent: unlimited
 //! velocity_limit = 3.0             # optional, rad/s or m/s (needs `limits`)
 //! effort_limit = 150.0             # optional, N·m or N (needs `limits`)
-//! damping = 0.0                    # optional, N·m·s/rad; default 0
-//! friction = 0.0                   # optional, Coulomb, N·m; default 0
-//! rotor_inertia = 0.0              # optional, kg·m², motor side; default 0
-//! gear_ratio = 1.0                 # optional, motor turns per joint turn; default 1
+//! damping = 0.0                    # reserved, N·m·s/rad: only 0 (not modelled yet)
+//! friction = 0.0                   # reserved, Coulomb, N·m: only 0 (not modelled yet)
+//! rotor_inertia = 0.0              # reserved, kg·m², motor side: only 0 (not modelled yet)
+//! gear_ratio = 1.0                 # reserved, motor turns per joint turn: only 1
 //!
 //! [joint.link]                     # the link moved by this joint, with its frame {i}
 //! name = "upper_arm"               # required, unique

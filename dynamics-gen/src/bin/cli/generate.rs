@@ -2,8 +2,9 @@
 
 use super::args::{GenerateArgs, ModelArgs};
 use dynamics_gen::dynamics_model::shipped;
+use dynamics_gen::emit::provenance::portable;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
-use dynamics_gen::Options;
+use dynamics_gen::{Options, Provenance, Scalar};
 
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
@@ -15,13 +16,24 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         nalgebra_path: args.nalgebra_path.clone(),
         load: args.model.load_options(),
     };
+    if let Some(name) = &args.name {
+        dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
+    }
     let spec = &args.model.robot;
-    let source = if !std::path::Path::new(spec).is_file() && shipped::get(spec).is_some() {
-        format!("shipped robot `{spec}`")
+    let provenance = if !std::path::Path::new(spec).is_file() {
+        match shipped::get(spec) {
+            Some(s) => Provenance::of_bytes(format!("shipped robot {spec}"), s.text.as_bytes()),
+            None => Provenance::new(spec.as_str()),
+        }
     } else {
-        spec.clone()
+        match std::fs::read(spec) {
+            Ok(bytes) => Provenance::of_bytes(spec.as_str(), &bytes),
+            Err(_) => Provenance::new(spec.as_str()),
+        }
     };
-    let code = dynamics_gen::generate_file(&robot, &options, &source).map_err(|e| e.to_string())?;
+    let provenance = provenance.command(command(args));
+    let code =
+        dynamics_gen::generate_file(&robot, &options, provenance).map_err(|e| e.to_string())?;
     match &args.output {
         Some(path) => std::fs::write(path, code)
             .map_err(|e| format!("{}: cannot write the generated file: {e}", path.display())),
@@ -29,6 +41,53 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
             print!("{code}");
             Ok(())
         }
+    }
+}
+
+/// The `dynamics-gen generate` command line that makes the same file, options in canonical
+/// form (no absolute paths).
+fn command(args: &GenerateArgs) -> String {
+    let m = &args.model;
+    let mut words = vec![
+        "dynamics-gen".to_string(),
+        "generate".into(),
+        quote(&portable(&m.robot)),
+    ];
+    if let Some(name) = &args.name {
+        words.extend(["--name".into(), quote(name)]);
+    }
+    if args.scalar != Scalar::F64 {
+        words.extend(["--scalar".into(), args.scalar.as_str().into()]);
+    }
+    if args.no_std {
+        words.push("--no-std".into());
+    }
+    if let Some(g) = m.gravity {
+        words.push(format!("--gravity={},{},{}", g[0], g[1], g[2]));
+    }
+    if let Some(tip) = &m.tip {
+        words.extend(["--tip".into(), quote(tip)]);
+    }
+    let locks: Vec<String> = m.lock.iter().map(|(j, v)| format!("{j}={v}")).collect();
+    if !locks.is_empty() {
+        words.extend(["--lock".into(), quote(&locks.join(","))]);
+    }
+    if args.nalgebra_path != Options::default().nalgebra_path {
+        words.extend(["--nalgebra-path".into(), quote(&args.nalgebra_path)]);
+    }
+    if let Some(out) = &args.output {
+        words.extend(["-o".into(), quote(&portable(&out.to_string_lossy()))]);
+    }
+    words.join(" ")
+}
+
+/// `word` quoted for a POSIX shell when it needs it.
+fn quote(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_-./=,:+@%".contains(c);
+    if !word.is_empty() && word.chars().all(plain) {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
     }
 }
 
