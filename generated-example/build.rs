@@ -6,18 +6,14 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let robots = [
         // The UR5 of example-robot-data (URDF).
-        Builder::new("ur5").no_std(true).clone(),
+        Builder::new("ur5").no_std(true),
         // The rotational pendulum of Modern Robotics Exercise 8.4.
-        Builder::new("pendulum").no_std(true).clone(),
+        Builder::new("pendulum").no_std(true),
         // The UR5 of the Modern Robotics course, with the gravity of its reference data.
-        Builder::new("mr_ur5")
-            .no_std(true)
-            .gravity([0.0, 0.0, -9.81])
-            .clone(),
+        Builder::new("mr_ur5").no_std(true).gravity([0.0, 0.0, -9.81]),
     ];
     for builder in &robots {
-        if let Err(e) = builder.compile() {
-            panic!("dynamics-gen: {e}");
-        }
+        // On error: a Cargo error under this crate's name, no panic backtrace.
+        builder.compile_or_report();
     }
 }
