@@ -10,7 +10,9 @@ fn main() {
         // The rotational pendulum of Modern Robotics Exercise 8.4.
         Builder::new("pendulum").no_std(true),
         // The UR5 of the Modern Robotics course, with the gravity of its reference data.
-        Builder::new("mr_ur5").no_std(true).gravity([0.0, 0.0, -9.81]),
+        Builder::new("mr_ur5")
+            .no_std(true)
+            .gravity([0.0, 0.0, -9.81]),
     ];
     for builder in &robots {
         // On error: a Cargo error under this crate's name, no panic backtrace.

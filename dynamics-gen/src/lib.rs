@@ -7,6 +7,7 @@
 //! [`Builder`], the `dynamics-gen` CLI and the `dynamics-macros` proc-macros.
 
 pub mod builder;
+pub mod check;
 pub mod emit;
 pub mod error;
 pub mod expand;
@@ -17,6 +18,7 @@ pub mod options;
 pub mod stats;
 
 pub use builder::{compile_robot, Builder};
+pub use check::check_robot;
 pub use dynamics_model;
 pub use emit::{generate_file, generate_impl, Generated, Provenance};
 pub use error::Error;

@@ -47,12 +47,7 @@ pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
         return load_file(path, options);
     }
     if let Some(shipped) = crate::shipped::get(spec) {
-        let robot = parse(shipped.text, shipped.format, shipped.file, options)?;
-        let errors = crate::validate::validate_with(&robot, !shipped.axes_as_given);
-        if !errors.is_empty() {
-            return Err(ModelError::Invalid(errors).in_file(shipped.file));
-        }
-        return Ok(robot);
+        return from_str(shipped.text, shipped.format, shipped.file, options);
     }
     if Format::from_path(path).is_some() || spec.contains('/') || spec.contains('\\') {
         return Err(ModelError::Io {

@@ -14,9 +14,6 @@ pub struct Shipped {
     pub format: Format,
     /// The file's text.
     pub text: &'static str,
-    /// Screw axes are taken as given (not required to be unit length), as the book's
-    /// functions take them: a reference-only robot, which the generator refuses.
-    pub axes_as_given: bool,
 }
 
 /// Every shipped robot.
@@ -27,7 +24,6 @@ pub const ROBOTS: &[Shipped] = &[
         file: "robots/ur5.urdf",
         format: Format::Urdf,
         text: include_str!("../../robots/ur5.urdf"),
-        axes_as_given: false,
     },
     // The UR5 of the Modern Robotics course, link frames at the centres of mass.
     Shipped {
@@ -35,16 +31,6 @@ pub const ROBOTS: &[Shipped] = &[
         file: "robots/mr_ur5.toml",
         format: Format::Toml,
         text: include_str!("../../robots/mr_ur5.toml"),
-        axes_as_given: false,
-    },
-    // The book's docstring example: its S₁ has |ω| = √2. It loads with its axes as given
-    // (for the reference implementation and `dynamics-gen eval`); the generator refuses it.
-    Shipped {
-        name: "mr_3link",
-        file: "robots/mr_3link.toml",
-        format: Format::Toml,
-        text: include_str!("../../robots/mr_3link.toml"),
-        axes_as_given: true,
     },
     // The rotational pendulum of Exercise 8.4.
     Shipped {
@@ -52,7 +38,6 @@ pub const ROBOTS: &[Shipped] = &[
         file: "robots/pendulum.toml",
         format: Format::Toml,
         text: include_str!("../../robots/pendulum.toml"),
-        axes_as_given: false,
     },
     // The random 7-joint chain of mr_random7.json, in every form the TOML format offers.
     Shipped {
@@ -60,12 +45,11 @@ pub const ROBOTS: &[Shipped] = &[
         file: "robots/rand7.toml",
         format: Format::Toml,
         text: include_str!("../../robots/rand7.toml"),
-        axes_as_given: false,
     },
 ];
 
 /// The names of the shipped robots.
-pub const NAMES: &[&str] = &["ur5", "mr_ur5", "mr_3link", "pendulum", "rand7"];
+pub const NAMES: &[&str] = &["ur5", "mr_ur5", "pendulum", "rand7"];
 
 /// The shipped robot called `name`.
 pub fn get(name: &str) -> Option<Shipped> {

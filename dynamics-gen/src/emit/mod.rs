@@ -37,18 +37,14 @@ pub struct Generated {
     pub robot: Robot,
 }
 
-/// The robot as the generator sees it: validated, with the gravity override applied.
+/// The robot as the generator sees it: with the gravity override applied, and passing
+/// [`crate::check_robot`].
 pub fn prepare(robot: &Robot, options: &Options) -> Result<Robot, Error> {
     let mut robot = robot.clone();
     if let Some(g) = options.load.gravity {
         robot.gravity = g;
     }
-    robot.validate().map_err(|e| e.in_file(&robot.source))?;
-    if robot.dof() == 0 {
-        return Err(Error::NoJoints {
-            robot: robot.name.clone(),
-        });
-    }
+    crate::check::check_robot(&robot)?;
     Ok(robot)
 }
 

@@ -86,10 +86,14 @@ impl ModelArgs {
         }
     }
 
-    /// Loads and validates the robot.
+    /// Loads the robot and applies the checks every front end shares
+    /// ([`dynamics_gen::check_robot`]), so that `generate`, `stats`, `eval` and `joints`
+    /// accept and refuse the same robots.
     pub fn load(&self) -> Result<Robot, String> {
-        dynamics_gen::dynamics_model::load(&self.robot, &self.load_options())
-            .map_err(|e| e.to_string())
+        let robot = dynamics_gen::dynamics_model::load(&self.robot, &self.load_options())
+            .map_err(|e| e.to_string())?;
+        dynamics_gen::check_robot(&robot).map_err(|e| e.to_string())?;
+        Ok(robot)
     }
 }
 

@@ -1,0 +1,130 @@
+//! The checks a robot passes before anything is generated or evaluated for it, shared by
+//! every front end (Builder, CLI `generate`/`stats`/`eval`/`joints`, `robot!`, derive), so
+//! that all of them accept and refuse exactly the same robots.
+//!
+//! 1. [`Robot::validate`]: every rule of `dynamics_model::validate` (unit screw axes,
+//!    rigid home frames, physically consistent inertias, …).
+//! 2. At least one movable joint.
+//! 3. A mass matrix that is not singular for every q. `M(q)` is analytic in q, so if it is
+//!    singular at [`SAMPLES`] seeded random configurations it is singular everywhere (a joint
+//!    that moves no mass or inertia, or two joints that move the same bodies the same way);
+//!    forward dynamics would then divide by zero. The symbolic mass matrix is evaluated at
+//!    those configurations and factorised `M = L D Lᵀ` in joint order; the first joint j
+//!    whose pivot `D_j ≤ PIVOT_TOL · M_jj` (its column depends on the columns before it), or
+//!    whose `M_jj ≤ PIVOT_TOL · max_k M_kk`, at every sample, is named in the error.
+
+use crate::error::Error;
+use crate::expand::{self, frames, Q};
+use crate::expr::ExprGraph;
+use dynamics_model::{Invalid, JointKind, ModelError, Robot, Subject};
+
+/// The number of random configurations the mass matrix is tried at.
+pub const SAMPLES: usize = 3;
+/// Relative size below which a pivot of `M = L D Lᵀ` counts as zero.
+pub const PIVOT_TOL: f64 = 1e-12;
+
+/// Checks `robot` (see the [module docs](self)); errors name the file, the joint, the field
+/// and the fix.
+pub fn check_robot(robot: &Robot) -> Result<(), Error> {
+    robot.validate().map_err(|e| e.in_file(&robot.source))?;
+    if robot.dof() == 0 {
+        return Err(Error::NoJoints {
+            robot: robot.name.clone(),
+        });
+    }
+    if let Some(j) = singular_joint(robot) {
+        let moved: Vec<String> = robot.links[j..]
+            .iter()
+            .map(|l| format!("`{}`", l.name))
+            .collect();
+        let e = Invalid::new(
+            Subject::Joint {
+                index: Some(j),
+                name: robot.joints[j].name.clone(),
+            },
+            "inertia",
+            format!(
+                "the mass matrix is singular for every q: the joint moves no mass or inertia that the joints before it do not already move (the links it moves: {}), so forward dynamics would divide by zero",
+                moved.join(", ")
+            ),
+            "give the links it moves their mass and inertia (URDF <inertial>, TOML `mass` and `inertia`), or lock the joint (`--lock JOINT=VALUE`, Builder `.lock(..)`, derive `lock(..)`)",
+        );
+        return Err(ModelError::invalid(e).in_file(&robot.source).into());
+    }
+    Ok(())
+}
+
+/// The first joint whose mass-matrix pivot vanishes at every sample, if any.
+fn singular_joint(robot: &Robot) -> Option<usize> {
+    let n = robot.dof();
+    let frames = frames::joint_frames(robot);
+    let mut g = ExprGraph::new();
+    let q: Vec<_> = (0..n).map(|i| g.input(expand::input(Q, i))).collect();
+    let motions = expand::joint_motions(&mut g, &frames, &q);
+    let m = expand::crba::crba(&mut g, &motions);
+    let mut first_singular = vec![None; SAMPLES];
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    for found in &mut first_singular {
+        let values: Vec<f64> = robot
+            .joints
+            .iter()
+            .map(|j| {
+                // SplitMix64, mapped to [−1, 1): deterministic, no dependency.
+                state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+                let mut z = state;
+                z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                let u = ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+                match j.kind {
+                    JointKind::Revolute => u * std::f64::consts::PI,
+                    JointKind::Prismatic => 0.5 * u,
+                }
+            })
+            .collect();
+        let mv = g.eval(&m, &|x| values[x.index as usize]);
+        *found = first_zero_pivot(&mv, n);
+    }
+    // Singular everywhere: the same joint at every sample.
+    let j = first_singular[0]?;
+    first_singular.iter().all(|f| *f == Some(j)).then_some(j)
+}
+
+/// The first j with a vanishing pivot of `M = L D Lᵀ` (row-major n×n), if any.
+fn first_zero_pivot(m: &[f64], n: usize) -> Option<usize> {
+    let scale = (0..n).map(|k| m[k * n + k].abs()).fold(0.0, f64::max);
+    let mut l = vec![0.0; n * n];
+    let mut d = vec![0.0; n];
+    for j in 0..n {
+        let mjj = m[j * n + j];
+        let mut dj = mjj;
+        for k in 0..j {
+            dj -= l[j * n + k] * l[j * n + k] * d[k];
+        }
+        if !(dj > PIVOT_TOL * mjj && mjj > PIVOT_TOL * scale) {
+            return Some(j);
+        }
+        d[j] = dj;
+        for i in j + 1..n {
+            let mut y = m[i * n + j];
+            for k in 0..j {
+                y -= l[i * n + k] * l[j * n + k] * d[k];
+            }
+            l[i * n + j] = y / dj;
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_zero_pivot;
+
+    #[test]
+    fn pivots() {
+        assert_eq!(first_zero_pivot(&[2.0, 1.0, 1.0, 2.0], 2), None);
+        assert_eq!(first_zero_pivot(&[2.0, 0.0, 0.0, 0.0], 2), Some(1));
+        // Two equal columns: the second adds nothing.
+        assert_eq!(first_zero_pivot(&[1.0, 1.0, 1.0, 1.0], 2), Some(1));
+        assert_eq!(first_zero_pivot(&[0.0, 0.0, 0.0, 1.0], 2), Some(0));
+    }
+}
