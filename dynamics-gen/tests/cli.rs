@@ -317,3 +317,72 @@ fn help_names_the_shipped_robots() {
         assert!(help.contains(name), "{name}: {help}");
     }
 }
+
+#[test]
+fn eval_refuses_non_finite_results_and_keep_going_answers_later_lines() {
+    let input = "{\"q\": [0, 0], \"qd\": [1e300, 0]}\n{\"q\": [0.1, 0.2]}\n";
+    // Without --keep-going: an error naming the line and the quantity, never `null`.
+    let out = run_with_stdin(&["eval", "pendulum"], input);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("line 1") && err.contains("not finite"),
+        "{err}"
+    );
+    assert!(!text(&out.stdout).contains("null"));
+    // With --keep-going: line 1 answered with its error, line 2 with numbers, exit 1.
+    let out = run_with_stdin(&["eval", "pendulum", "--keep-going"], input);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    let lines: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    assert_eq!(lines[0]["line"], 1);
+    assert!(lines[0]["error"].as_str().unwrap().contains("not finite"));
+    assert_eq!(floats(&lines[1]["gravity"]).len(), 2);
+    assert!(!stdout.contains("null"), "{stdout}");
+    // Non-finite inputs are refused by name too.
+    let out = run_with_stdin(&["eval", "pendulum"], "{\"q\": [0, 1e999]}\n");
+    assert!(
+        text(&out.stderr).contains("line 1"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn lock_accepts_the_comma_form_and_constants() {
+    let repeated = run(&[
+        "joints",
+        "ur5",
+        "--lock",
+        "wrist_3_joint=0.5",
+        "--lock",
+        "wrist_2_joint=-1.5707963267948966",
+    ]);
+    let comma = run(&[
+        "joints",
+        "ur5",
+        "--lock",
+        "wrist_3_joint=0.5,wrist_2_joint=-PI/2",
+    ]);
+    assert!(comma.status.success(), "{}", text(&comma.stderr));
+    assert_eq!(text(&comma.stdout), text(&repeated.stdout));
+    assert_eq!(text(&comma.stdout).lines().count(), 4);
+    let bad = run(&["joints", "ur5", "--lock", "wrist_3_joint=PIE"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(text(&bad.stderr).contains("PIE"), "{}", text(&bad.stderr));
+}
+
+#[test]
+fn tip_and_ignored_urdf_dynamics_are_noted() {
+    let out = run(&["stats", "ur5", "--tip", "ee_link"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("note: --tip"),
+        "{}",
+        text(&out.stderr)
+    );
+}

@@ -28,8 +28,9 @@ pub enum Command {
     /// (all but `q` optional, default zero; `f_tip` = (m, f) applied by the end effector, in
     /// {n+1}). Each output line holds `mass_matrix`, `coriolis`, `gravity`,
     /// `inverse_dynamics`, `forward_dynamics`, `coriolis_matrix` and `end_effector_pose`
-    /// (matrices as lists of rows).
-    Eval(ModelArgs),
+    /// (matrices as lists of rows). A line whose results are not finite (e.g. q̇ = 1e300) is
+    /// an error for that line.
+    Eval(EvalArgs),
     /// List the movable joints in vector order: name, type, screw axis S_i in {0}, limits.
     Joints(ModelArgs),
     /// List the shipped robots.
@@ -48,9 +49,23 @@ pub struct ModelArgs {
     /// URDF: the link whose frame is the end-effector frame {n+1}.
     #[arg(long, value_name = "LINK")]
     pub tip: Option<String>,
-    /// URDF: lock a movable joint at a value (rad or m), making it fixed; repeatable.
-    #[arg(long, value_name = "JOINT=VALUE", value_parser = parse_lock)]
+    /// URDF: lock movable joints at values (rad or m), making them fixed; repeatable and
+    /// comma-separated (`--lock a=0,b=PI/2`). A value is a number or constant arithmetic as in
+    /// `robot!` (`PI/2`, `-FRAC_PI_4`, `0.5*PI`).
+    #[arg(long, value_name = "JOINT=VALUE[,JOINT=VALUE...]", value_parser = parse_lock, value_delimiter = ',', allow_hyphen_values = true)]
     pub lock: Vec<(String, f64)>,
+}
+
+/// Arguments of `eval`.
+#[derive(Debug, Args)]
+pub struct EvalArgs {
+    /// The robot and model options.
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// Go on after a bad line: its answer is `{"line": N, "error": "…"}` (the message also
+    /// goes to stderr), later lines are answered, and the exit code is 1 at the end.
+    #[arg(long)]
+    pub keep_going: bool,
 }
 
 /// Arguments of `generate`.
@@ -130,12 +145,54 @@ pub fn parse_lock(s: &str) -> Result<(String, f64), String> {
     if joint.is_empty() {
         return Err(bad("the joint name is empty"));
     }
-    let value: f64 = value
-        .trim()
-        .parse()
-        .map_err(|_| bad("the value is not a number"))?;
-    if !value.is_finite() {
-        return Err(bad("the value is not finite"));
-    }
+    let value = parse_number(value.trim()).map_err(|e| bad(&e))?;
     Ok((joint.to_string(), value))
+}
+
+/// A number as `robot!` reads one: a literal or constant arithmetic over the named constants
+/// (`PI/2`, `-FRAC_PI_4`, `2*PI/3`); finite.
+pub fn parse_number(text: &str) -> Result<f64, String> {
+    use dynamics_gen::macro_support::number;
+    if let Ok(x) = text.parse::<f64>() {
+        return if x.is_finite() {
+            Ok(x)
+        } else {
+            Err("the value is not finite".into())
+        };
+    }
+    let tokens: proc_macro2::TokenStream = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number ({})", number::allowed()))?;
+    let tokens: Vec<proc_macro2::TokenTree> = tokens.into_iter().collect();
+    if tokens.is_empty() {
+        return Err("the value is empty".into());
+    }
+    number::evaluate(&tokens).map_err(|e| format!("`{text}`: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lock_values_take_constants() {
+        assert_eq!(parse_lock("a=0.5").unwrap(), ("a".into(), 0.5));
+        assert_eq!(
+            parse_lock("a = PI/2").unwrap().1,
+            std::f64::consts::FRAC_PI_2
+        );
+        assert_eq!(
+            parse_lock("a=-FRAC_PI_4").unwrap().1,
+            -std::f64::consts::FRAC_PI_4
+        );
+        assert_eq!(
+            parse_lock("a=2*PI/3").unwrap().1,
+            2.0 * std::f64::consts::PI / 3.0
+        );
+        assert!(parse_lock("a=inf").is_err());
+        assert!(parse_lock("a=1/0").is_err());
+        let e = parse_lock("a=PIE").unwrap_err();
+        assert!(e.contains("PIE"), "{e}");
+        assert!(parse_lock("a").unwrap_err().contains("no `=`"));
+    }
 }

@@ -1,6 +1,6 @@
 //! `eval`: the reference dynamics (dynamics-reference) on states read as JSON lines.
 
-use super::args::ModelArgs;
+use super::args::EvalArgs;
 use dynamics_gen::dynamics_model::Robot;
 use nalgebra::{DMatrix, Matrix4, Vector6};
 use serde::{Deserialize, Serialize};
@@ -33,24 +33,40 @@ struct Output {
     end_effector_pose: Vec<Vec<f64>>,
 }
 
-/// `dynamics-gen eval`: answers every line of stdin until the first bad one.
-pub fn run(args: &ModelArgs) -> Result<(), String> {
-    let robot = args.load()?;
+/// `dynamics-gen eval`: answers every line of stdin; stops at the first bad one unless
+/// `--keep-going`.
+pub fn run(args: &EvalArgs) -> Result<(), String> {
+    let robot = args.model.load()?;
     let stdin = std::io::stdin();
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
+    let mut failed = 0usize;
     for (i, line) in stdin.lock().lines().enumerate() {
         let number = i + 1;
         let line = line.map_err(|e| format!("line {number}: cannot read standard input: {e}"))?;
         if line.trim().is_empty() {
             continue;
         }
-        let answer = eval_line(&robot, &line).map_err(|e| format!("line {number}: {e}"))?;
-        let json = serde_json::to_string(&answer)
-            .map_err(|e| format!("line {number}: cannot write the result: {e}"))?;
+        let json = match eval_line(&robot, &line).and_then(|answer| {
+            serde_json::to_string(&answer).map_err(|e| format!("cannot write the result: {e}"))
+        }) {
+            Ok(json) => json,
+            Err(e) if args.keep_going => {
+                failed += 1;
+                eprintln!("error: line {number}: {e}");
+                serde_json::json!({ "line": number, "error": e }).to_string()
+            }
+            Err(e) => return Err(format!("line {number}: {e}")),
+        };
         writeln!(out, "{json}")
             .and_then(|()| out.flush())
             .map_err(|e| format!("cannot write to standard output: {e}"))?;
+    }
+    if failed > 0 {
+        return Err(format!(
+            "{failed} line{} could not be evaluated (answered with \"error\")",
+            if failed == 1 { "" } else { "s" }
+        ));
     }
     Ok(())
 }
@@ -83,10 +99,15 @@ fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
             ))
         }
     };
+    for (name, v) in [("q", &q), ("qd", &qd), ("qdd", &qdd), ("tau", &tau)] {
+        if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+            return Err(format!("\"{name}\"[{k}] is not a finite number"));
+        }
+    }
     let g = robot.gravity;
     let forward = dynamics_reference::forward_dynamics(robot, &q, &qd, &tau, &g, &f_tip)
         .map_err(|e| format!("forward dynamics: {e}"))?;
-    Ok(Output {
+    Output {
         mass_matrix: rows(&dynamics_reference::mass_matrix(robot, &q)),
         coriolis: dynamics_reference::vel_quadratic_forces(robot, &q, &qd)
             .as_slice()
@@ -100,7 +121,42 @@ fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
         forward_dynamics: forward.as_slice().to_vec(),
         coriolis_matrix: rows(&dynamics_reference::coriolis_matrix(robot, &q, &qd)),
         end_effector_pose: pose_rows(&dynamics_reference::end_effector_pose(robot, &q)),
-    })
+    }
+    .finite()
+}
+
+impl Output {
+    /// The output, or an error naming the first quantity with a NaN or infinite entry (JSON
+    /// has no such numbers; serde_json would print `null`).
+    fn finite(self) -> Result<Self, String> {
+        let vectors: [(&str, &[f64]); 4] = [
+            ("coriolis", &self.coriolis),
+            ("gravity", &self.gravity),
+            ("inverse_dynamics", &self.inverse_dynamics),
+            ("forward_dynamics", &self.forward_dynamics),
+        ];
+        let matrices: [(&str, &Vec<Vec<f64>>); 3] = [
+            ("mass_matrix", &self.mass_matrix),
+            ("coriolis_matrix", &self.coriolis_matrix),
+            ("end_effector_pose", &self.end_effector_pose),
+        ];
+        let bad = vectors
+            .iter()
+            .find(|(_, v)| v.iter().any(|x| !x.is_finite()))
+            .map(|(n, _)| *n)
+            .or_else(|| {
+                matrices
+                    .iter()
+                    .find(|(_, m)| m.iter().flatten().any(|x| !x.is_finite()))
+                    .map(|(n, _)| *n)
+            });
+        match bad {
+            None => Ok(self),
+            Some(name) => Err(format!(
+                "{name} is not finite at this state (an overflow: are the inputs in SI units and of a sensible size?)"
+            )),
+        }
+    }
 }
 
 fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {

@@ -9,6 +9,7 @@ use dynamics_gen::{Options, Provenance, Scalar};
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
     let robot = args.model.load()?;
+    super::joints::ignored_notes(&robot, &args.model);
     let options = Options {
         name: args.name.clone(),
         scalar: args.scalar,
@@ -94,6 +95,7 @@ fn quote(word: &str) -> String {
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
 pub fn stats(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
+    super::joints::ignored_notes(&robot, args);
     let options = Options {
         load: args.load_options(),
         ..Options::default()
