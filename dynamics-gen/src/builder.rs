@@ -107,6 +107,20 @@ impl Builder {
         self
     }
 
+    /// The path of the `dynamics-runtime` crate in the generated code (default
+    /// `::dynamics_runtime`), whose `Dynamics` trait the generated struct implements.
+    pub fn runtime_path(mut self, path: impl Into<String>) -> Self {
+        self.options.runtime_path = Some(path.into());
+        self
+    }
+
+    /// No `impl dynamics_runtime::Dynamics`: the generated code then needs only nalgebra
+    /// (and libm for `no_std`), and the crate no `dynamics-runtime` dependency.
+    pub fn no_runtime_trait(mut self) -> Self {
+        self.options.runtime_path = None;
+        self
+    }
+
     /// The generated file's name in the output directory (default `<robot>.rs`, where
     /// `<robot>` is the robot file's stem or the shipped robot's name).
     pub fn out_file(mut self, file_name: impl Into<String>) -> Self {
@@ -171,6 +185,13 @@ impl Builder {
         for (joint, value) in &o.load.lock {
             s += &format!(".lock({joint:?}, {value:?})");
         }
+        match &o.runtime_path {
+            None => s += ".no_runtime_trait()",
+            Some(p) if Some(p) != Options::default().runtime_path.as_ref() => {
+                s += &format!(".runtime_path({p:?})")
+            }
+            Some(_) => {}
+        }
         if o.nalgebra_path != Options::default().nalgebra_path {
             s += &format!(".nalgebra_path({:?})", o.nalgebra_path);
         }
@@ -213,10 +234,8 @@ impl Builder {
         if let Source::File { path: robot, .. } = &source {
             println!("cargo:rerun-if-changed={}", robot.display());
         }
-        if self.options.no_std {
-            if let Some(hint) = std::env::var_os("CARGO_MANIFEST_DIR")
-                .and_then(|dir| crate::manifest::missing_dependency(Path::new(&dir), "libm"))
-            {
+        if let Some(dir) = std::env::var_os("CARGO_MANIFEST_DIR") {
+            for hint in crate::manifest::missing_dependencies(Path::new(&dir), &self.options) {
                 println!("cargo::warning={hint}");
             }
         }

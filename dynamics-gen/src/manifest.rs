@@ -3,6 +3,20 @@
 
 use std::path::Path;
 
+/// Hints for every dependency the code generated with `options` needs and the crate at
+/// `manifest_dir` does not declare: `libm` for `no_std`, `dynamics-runtime` for the trait
+/// impl at its default path.
+pub fn missing_dependencies(manifest_dir: &Path, options: &crate::Options) -> Vec<String> {
+    let mut hints = Vec::new();
+    if options.no_std {
+        hints.extend(missing_dependency(manifest_dir, "libm"));
+    }
+    if options.runtime_path.as_deref() == Some("::dynamics_runtime") {
+        hints.extend(missing_dependency(manifest_dir, "dynamics-runtime"));
+    }
+    hints
+}
+
 /// A hint when the crate at `manifest_dir` declares no dependency named `krate` (in
 /// `[dependencies]` or any `[target.*.dependencies]`, plain or renamed with `package =`);
 /// `None` when it does, or when `Cargo.toml` cannot be read or parsed (nothing is guessed).
@@ -20,10 +34,12 @@ pub fn missing_dependency(manifest_dir: &Path, krate: &str) -> Option<String> {
     if let Some(targets) = manifest.get("target").and_then(toml::Value::as_table) {
         found |= targets.values().any(|t| declares(t.get("dependencies")));
     }
-    (!found).then(|| {
-        format!(
-            "no_std code calls `::{krate}` for sin/cos, but Cargo.toml has no `{krate}` dependency: add `{krate} = \"0.2\"` under [dependencies]"
-        )
+    (!found).then(|| match krate {
+        "libm" => "no_std code calls `::libm` for sin/cos, but Cargo.toml has no `libm` dependency: add `libm = \"0.2\"` under [dependencies]".to_string(),
+        _ => format!(
+            "the generated struct implements `{}::Dynamics`, but Cargo.toml has no `{krate}` dependency: add `{krate} = \"0.1\"` under [dependencies], or call .no_runtime_trait()",
+            krate.replace('-', "_")
+        ),
     })
 }
 

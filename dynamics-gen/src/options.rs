@@ -44,6 +44,10 @@ pub struct Options {
     pub no_std: bool,
     /// The path of the nalgebra crate in generated code (default `::nalgebra`).
     pub nalgebra_path: String,
+    /// The path of the `dynamics-runtime` crate whose `Dynamics` trait the generated struct
+    /// implements (default `::dynamics_runtime`); `None`: no trait impl, so the generated
+    /// code needs only nalgebra (and libm for `no_std`).
+    pub runtime_path: Option<String>,
     /// Loader options (gravity override, URDF tip and locked joints).
     pub load: LoadOptions,
 }
@@ -55,6 +59,7 @@ impl Default for Options {
             scalar: Scalar::F64,
             no_std: false,
             nalgebra_path: "::nalgebra".into(),
+            runtime_path: Some("::dynamics_runtime".into()),
             load: LoadOptions::default(),
         }
     }

@@ -186,6 +186,16 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             }
         }
     };
+    let impl_block = match &options.runtime_path {
+        None => impl_block,
+        Some(path) => {
+            let runtime: TokenStream = syn::parse_str::<syn::Path>(path)
+                .map(|p| quote!(#p))
+                .map_err(|_| Error::InvalidPath { path: path.clone() })?;
+            let trait_impl = runtime_impl(&ident, &runtime, &nalgebra, &scalar, &n);
+            quote!(#impl_block #trait_impl)
+        }
+    };
     let struct_doc = struct_doc(&robot, options);
     let struct_item = quote! {
         #(#[doc = #struct_doc])*
@@ -224,6 +234,47 @@ pub fn generate_file(
         .map_err(|e| Error::Internal(format!("generated code does not parse: {e}")))?;
     let body = prettyplease::unparse(&file);
     Ok(format!("{header}\n{body}"))
+}
+
+/// `impl Dynamics<T, N, N> for Name`, forwarding to the inherent functions and constants.
+fn runtime_impl(
+    ident: &Ident,
+    runtime: &TokenStream,
+    nalgebra: &TokenStream,
+    scalar: &Ident,
+    n: &proc_macro2::Literal,
+) -> TokenStream {
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #n>);
+    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #n, #n>);
+    quote! {
+        #[rustfmt::skip]
+        impl #runtime::Dynamics<#scalar, #n, #n> for #ident {
+            const JOINT_NAMES: &'static [&'static str] = &Self::JOINT_NAMES;
+            const POSITION_LIMITS: &'static [[#scalar; 2]] = &Self::POSITION_LIMITS;
+            const VELOCITY_LIMITS: &'static [#scalar] = &Self::VELOCITY_LIMITS;
+            const EFFORT_LIMITS: &'static [#scalar] = &Self::EFFORT_LIMITS;
+            #[inline]
+            fn mass_matrix(&self, q: &#vec_ty) -> #mat_ty {
+                #ident::mass_matrix(self, q)
+            }
+            #[inline]
+            fn coriolis(&self, q: &#vec_ty, qd: &#vec_ty) -> #vec_ty {
+                #ident::coriolis(self, q, qd)
+            }
+            #[inline]
+            fn gravity(&self, q: &#vec_ty) -> #vec_ty {
+                #ident::gravity(self, q)
+            }
+            #[inline]
+            fn inverse_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
+                #ident::inverse_dynamics(self, q, qd, qdd)
+            }
+            #[inline]
+            fn forward_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
+                #ident::forward_dynamics(self, q, qd, tau)
+            }
+        }
+    }
 }
 
 fn allow_attrs() -> TokenStream {

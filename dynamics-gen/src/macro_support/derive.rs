@@ -57,6 +57,12 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     }
                 }
                 "no_std" => attr.options.no_std = true,
+                "no_runtime_trait" => attr.options.runtime_path = None,
+                "runtime" => {
+                    let path: syn::Path = meta.value()?.parse()?;
+                    attr.options.runtime_path =
+                        Some(path.to_token_stream().to_string().replace(' ', ""));
+                }
                 "nalgebra" => {
                     let path: syn::Path = meta.value()?.parse()?;
                     attr.options.nalgebra_path = path
@@ -111,7 +117,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, gravity = [gx, gy, gz], tip = \"LINK\", lock(JOINT = VALUE, ..), method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], tip = \"LINK\", lock(JOINT = VALUE, ..), method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

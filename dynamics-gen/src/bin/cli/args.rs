@@ -86,6 +86,12 @@ pub struct GenerateArgs {
     /// The path of the nalgebra crate in the generated code.
     #[arg(long, default_value = "::nalgebra", value_name = "PATH")]
     pub nalgebra_path: String,
+    /// The path of the dynamics-runtime crate, whose `Dynamics` trait the struct implements.
+    #[arg(long, default_value = "::dynamics_runtime", value_name = "PATH")]
+    pub runtime_path: String,
+    /// No `impl dynamics_runtime::Dynamics`: the code then needs only nalgebra (and libm).
+    #[arg(long)]
+    pub no_runtime_trait: bool,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

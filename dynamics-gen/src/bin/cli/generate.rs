@@ -15,6 +15,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         scalar: args.scalar,
         no_std: args.no_std,
         nalgebra_path: args.nalgebra_path.clone(),
+        runtime_path: (!args.no_runtime_trait).then(|| args.runtime_path.clone()),
         load: args.model.load_options(),
     };
     if let Some(name) = &args.name {
@@ -75,6 +76,11 @@ fn command(args: &GenerateArgs) -> String {
     }
     if args.nalgebra_path != Options::default().nalgebra_path {
         words.extend(["--nalgebra-path".into(), quote(&args.nalgebra_path)]);
+    }
+    if args.no_runtime_trait {
+        words.push("--no-runtime-trait".into());
+    } else if Some(&args.runtime_path) != Options::default().runtime_path.as_ref() {
+        words.extend(["--runtime-path".into(), quote(&args.runtime_path)]);
     }
     if let Some(out) = &args.output {
         words.extend(["-o".into(), quote(&portable(&out.to_string_lossy()))]);
