@@ -19,6 +19,16 @@
 //! - Continuous joints are unlimited revolute joints; limits with lower = upper = 0 are none.
 //!   `<dynamics damping friction>` is kept on the [`crate::Joint`]. Gravity is `(0, 0, −9.81)`.
 //!
+//! # What is read, what is skipped
+//!
+//! Only what the dynamics need: `<link>` with its `<inertial>`, `<joint>` with its
+//! `<origin>`, `<parent>`, `<child>`, `<axis>`, `<limit>`, `<dynamics>` and `<mimic>`.
+//! Everything else is skipped unchecked, as urdfdom and Pinocchio skip what they do not use
+//! (see [`strip`]): `<visual>`, `<collision>` and their geometry (Pinocchio's `<capsule>`
+//! included), materials and textures, `<gazebo>`, `<transmission>`, `<calibration>`,
+//! `<safety_controller>`, unknown tags and unknown attributes. Skipped elements must still be
+//! well-formed XML.
+//!
 //! # What is refused, by name
 //!
 //! Malformed XML (with line and column where they can be found), unknown links, links with
@@ -31,6 +41,7 @@ mod assemble;
 mod convert;
 pub mod origin;
 mod parse;
+pub mod strip;
 mod tree;
 mod xml_scan;
 
