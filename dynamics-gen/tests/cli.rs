@@ -385,4 +385,18 @@ fn tip_and_ignored_urdf_dynamics_are_noted() {
         "{}",
         text(&out.stderr)
     );
+
+fn joints_reads_a_urdf_piped_to_standard_input() {
+    let urdf = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/ur5.urdf"))
+        .unwrap();
+    let out = run_with_stdin(&["joints", "-"], &urdf);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let piped = text(&out.stdout);
+    assert_eq!(piped, text(&run(&["joints", "ur5"]).stdout));
+    assert_eq!(piped.lines().count(), 6);
+    // Errors name the input `<stdin>`.
+    let out = run_with_stdin(&["joints", "-"], "<robot name=\"t\">\n<link name=\"a\">\n");
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: <stdin>:"), "{err}");
 }

@@ -39,9 +39,16 @@ pub struct LoadOptions {
     pub gravity: Option<Vector3<f64>>,
 }
 
-/// Loads `spec`: a path to a `.toml` or `.urdf` file, or the name of a shipped robot
-/// ([`crate::shipped::NAMES`]). An existing file wins over a shipped name.
+/// The name standard input has in errors.
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// Loads `spec`: a path to a `.toml` or `.urdf` file, the name of a shipped robot
+/// ([`crate::shipped::NAMES`]), or `-` for standard input ([`from_reader`], format sniffed,
+/// named `<stdin>` in errors). An existing file wins over a shipped name.
 pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
+    if spec == "-" {
+        return from_reader(std::io::stdin().lock(), STDIN_NAME, options);
+    }
     let path = Path::new(spec);
     if path.is_file() {
         return load_file(path, options);
@@ -76,6 +83,35 @@ pub fn load_file(path: &Path, options: &LoadOptions) -> Result<Robot, ModelError
         message: e.to_string(),
     })?;
     from_str(&text, format, &file, options)
+}
+
+/// The format of a description without a file name: URDF when its first non-whitespace
+/// character is `<` (XML), TOML otherwise.
+pub fn sniff(text: &str) -> Format {
+    if text.trim_start().starts_with('<') {
+        Format::Urdf
+    } else {
+        Format::Toml
+    }
+}
+
+/// Reads a robot description from `reader` (e.g. standard input) to its end, sniffs its
+/// format ([`sniff`]), parses and validates it; `name` names it in errors.
+pub fn from_reader(
+    mut reader: impl std::io::Read,
+    name: &str,
+    options: &LoadOptions,
+) -> Result<Robot, ModelError> {
+    let mut text = String::new();
+    reader
+        .read_to_string(&mut text)
+        .map_err(|e| ModelError::Io {
+            file: name.to_string(),
+            message: e.to_string(),
+        })?;
+    // A byte-order mark is not part of the description.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    from_str(text, sniff(text), name, options)
 }
 
 /// Parses and validates a robot description held in memory; `file` names it in errors.

@@ -17,7 +17,6 @@ use crate::error::{Invalid, Subject};
 use crate::lie::{exp6, twist};
 use crate::robot::{JointKind, JointLimits};
 use nalgebra::{Matrix3, Matrix4, Vector3};
-use std::collections::HashMap;
 
 /// A URDF joint after checking: movable (with its kind) or fixed.
 #[derive(Clone, Debug)]
@@ -58,59 +57,8 @@ fn all_finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
-/// The lock values by joint index, checking that every locked joint exists and can move.
-pub fn locks(
-    robot: &urdf_rs::Robot,
-    lock: &[(String, f64)],
-) -> Result<HashMap<usize, f64>, Vec<Invalid>> {
-    let movable: Vec<&str> = robot
-        .joints
-        .iter()
-        .filter(|j| is_one_dof(&j.joint_type))
-        .map(|j| j.name.as_str())
-        .collect();
-    let mut out = HashMap::new();
-    let mut errors = Vec::new();
-    for (name, value) in lock {
-        let found = robot.joints.iter().position(|j| &j.name == name);
-        match found {
-            Some(ji) if is_one_dof(&robot.joints[ji].joint_type) => {
-                if !value.is_finite() {
-                    errors.push(Invalid::new(
-                        joint_subject(name),
-                        "lock",
-                        format!("the lock value {value} is not finite"),
-                        "give a finite joint value (rad or m)",
-                    ));
-                } else if out.insert(ji, *value).is_some() {
-                    errors.push(Invalid::new(
-                        joint_subject(name),
-                        "lock",
-                        "the joint is locked twice",
-                        "lock each joint once",
-                    ));
-                }
-            }
-            other => errors.push(Invalid::new(
-                joint_subject(name),
-                "lock",
-                if other.is_some() {
-                    "only a movable joint (revolute, continuous, prismatic) can be locked; this one is not".to_string()
-                } else {
-                    "the file has no joint of this name".to_string()
-                },
-                format!("lock one of the movable joints: {}", movable.join(", ")),
-            )),
-        }
-    }
-    if errors.is_empty() {
-        Ok(out)
-    } else {
-        Err(errors)
-    }
-}
-
-fn is_one_dof(t: &urdf_rs::JointType) -> bool {
+/// Whether a joint type has one degree of freedom (can move, can be locked).
+pub fn is_one_dof(t: &urdf_rs::JointType) -> bool {
     matches!(
         t,
         urdf_rs::JointType::Revolute
@@ -154,20 +102,6 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
             Err(errors)
         };
     };
-    if j.mimic.is_some() && lock.is_none() {
-        errors.push(Invalid::new(
-            subject(),
-            "mimic",
-            format!(
-                "a movable joint that mimics joint `{}` is not supported (it is not an independent joint)",
-                j.mimic.as_ref().map_or("", |m| m.joint.as_str())
-            ),
-            format!(
-                "lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), or make it fixed",
-                j.name
-            ),
-        ));
-    }
     let a = Vector3::from(j.axis.xyz.0);
     let axis = if !all_finite(a.as_slice()) {
         errors.push(Invalid::new(
@@ -215,9 +149,18 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
                 JointKind::Revolute => twist(&axis, &Vector3::zeros()),
                 JointKind::Prismatic => twist(&Vector3::zeros(), &axis),
             };
+            let transform = transform * exp6(&motion, value);
+            if !all_finite(transform.as_slice()) {
+                return Err(vec![Invalid::new(
+                    subject(),
+                    "lock",
+                    format!("locking the joint at {value} gives a non-finite pose"),
+                    "give a lock value (rad or m) within the joint's range of motion",
+                )]);
+            }
             Ok(JointModel {
                 kind: None,
-                transform: transform * exp6(&motion, value),
+                transform,
                 axis,
                 limits: None,
                 damping: 0.0,

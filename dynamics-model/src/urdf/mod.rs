@@ -19,18 +19,46 @@
 //! - Continuous joints are unlimited revolute joints; limits with lower = upper = 0 are none.
 //!   `<dynamics damping friction>` is kept on the [`crate::Joint`]. Gravity is `(0, 0, −9.81)`.
 //!
+//! # What is read, what is skipped
+//!
+//! Only what the dynamics need: `<link>` with its `<inertial>`, `<joint>` with its
+//! `<origin>`, `<parent>`, `<child>`, `<axis>`, `<limit>`, `<dynamics>` and `<mimic>`.
+//! Everything else is skipped unchecked, as urdfdom and Pinocchio skip what they do not use
+//! (see the `strip` module): `<visual>`, `<collision>` and their geometry (Pinocchio's `<capsule>`
+//! included), materials and textures, `<gazebo>`, `<transmission>`, `<calibration>`,
+//! `<safety_controller>`, unknown tags and unknown attributes. Skipped elements must still be
+//! well-formed XML.
+//!
+//! # Locks
+//!
+//! [`LoadOptions::lock`] (`--lock JOINT=VALUE`) turns movable joints into fixed ones at a
+//! value (see the `locks` module): the value must be finite, at most 1e6 in magnitude and within the
+//! joint's `<limit lower upper>` (continuous joints have none). Locking a joint also locks
+//! the movable joints that `<mimic>` it, at `multiplier·value + offset`; a follower locked
+//! explicitly too must be locked at that same value.
+//!
 //! # What is refused, by name
 //!
-//! Malformed XML (with line and column where they can be found), unknown links, links with
-//! two parents and closed loops, several roots, `floating`/`planar` joints, movable joints
-//! with `<mimic>`, non-finite numbers, negative masses, physically impossible inertias
-//! (checked per URDF link), zero axes, and trees: two or more branches with movable joints
-//! (lock the joints of the extra branches with [`LoadOptions::lock`], `--lock JOINT=VALUE`).
+//! Malformed XML, also inside skipped elements (with line and column where they can be
+//! found); missing required fields of what is read (a link's `name`, `<inertial>` without
+//! `<mass>` or `<inertia>`, a joint's `name`, `type`, `<parent>`, `<child>`, an `<axis>`
+//! without `xyz`, `<limit>` without `velocity` before URDF 1.2, `<mimic>` without `joint`);
+//! numbers that do not parse or are not finite; unknown links, links with two parents and
+//! closed loops, several roots; `floating`/`planar` joints; movable joints with `<mimic>`
+//! whose leader is not locked; negative masses and physically impossible inertias (checked
+//! per URDF link); zero axes; lock values that are not finite, absurd or outside the joint's
+//! limits (blamed on the lock, not on the file); and trees: two or more branches with
+//! movable joints. A tree is refused with one error per branch point on the chain this
+//! loader would keep, each with the locks that remove its other branches, and all of them
+//! (with the mimic joints left on the chain) in the first error, in the form
+//! `--lock A=0,B=0` (CLI), [`LoadOptions::lock`] for the Builder and derive.
 
 mod assemble;
 mod convert;
+mod locks;
 pub mod origin;
 mod parse;
+mod strip;
 mod tree;
 mod xml_scan;
 
@@ -52,7 +80,8 @@ pub fn from_str(text: &str, file: &str, options: &LoadOptions) -> Result<Robot, 
 /// The parsed URDF to a robot; every error found on the way, without the file name.
 fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, Vec<Invalid>> {
     let tree = tree::Tree::new(urdf)?;
-    let locks = convert::locks(urdf, &options.lock)?;
+    let mimics = locks::mimics(urdf);
+    let locks = locks::resolve(urdf, &options.lock, &mimics)?;
     let mut errors = Vec::new();
     let joints: Vec<_> = urdf
         .joints
@@ -89,7 +118,13 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         return Err(errors);
     }
     let movable: Vec<bool> = joints.iter().map(|j| j.kind.is_some()).collect();
-    let names: Vec<String> = urdf.joints.iter().map(|j| j.name.clone()).collect();
-    let chain = tree.chain(&movable, &names, tip)?;
+    let independent: Vec<bool> = (0..movable.len())
+        .map(|j| movable[j] && mimics[j].is_none())
+        .collect();
+    let (chain, branch_points) = tree.chain(&movable, &independent, tip);
+    let errors = locks::structure_errors(urdf, &tree, &chain, &branch_points, &mimics);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
     assemble::robot(urdf, &tree, &joints, &links, &chain, tip)
 }

@@ -7,7 +7,7 @@
 //! text for the value or element the message quotes; when nothing is found, line and column
 //! are 0 and the message stands alone.
 
-use super::xml_scan;
+use super::{strip, xml_scan};
 use crate::error::ModelError;
 
 /// Parses `text` with `urdf_rs::read_from_string`; errors name `file` and, where they can
@@ -41,6 +41,8 @@ pub fn read(text: &str, file: &str) -> Result<urdf_rs::Robot, ModelError> {
     // urdf-rs and its XML back ends are not known to panic on malformed input, but they were
     // not written with hostile input in mind; a panic must not take down a build script or
     // the CLI, so it is caught here as a last resort and reported as a parse error.
+    // The elements the loader does not read are blanked out first (lines and columns kept).
+    let text = &strip::dynamics_only(text, &root);
     let result = std::panic::catch_unwind(|| urdf_rs::read_from_string(text));
     match result {
         Ok(Ok(robot)) => Ok(robot),

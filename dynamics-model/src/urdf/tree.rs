@@ -4,7 +4,8 @@
 //! Every link but the root has exactly one parent joint; the root has none. The chain is the
 //! path from the root to the last movable joint. Side branches that hold only fixed joints
 //! (tool flanges, hands, sensors) are welded to the body they hang from; two or more
-//! branches that hold movable joints make a tree, which is not supported yet.
+//! branches that hold movable joints make a tree, which is not supported yet: [`Tree::chain`]
+//! finds every branch point on the way to the tip, so that one error can name them all.
 
 use crate::error::{Invalid, Subject};
 use std::collections::HashMap;
@@ -209,18 +210,22 @@ impl Tree {
         out
     }
 
-    /// The movable joints (`movable[j]` per joint), root to tip, when they form one chain.
+    /// The serial chain through the tree and the branch points on it.
     ///
-    /// Otherwise the error names the link where the tree branches, the movable joints of
-    /// every branch, and suggests locking the branches other than the one to keep (the one
-    /// holding `keep_link`, if given, else the one with the most movable joints).
+    /// Walking from the root, at every link with two or more child branches holding movable
+    /// joints (`movable[j]` per joint) one branch is kept: the one holding `keep_link`, if
+    /// given, else the one with the most `independent` joints (the first on a tie). The
+    /// chain is the movable joints of the kept branches, root to tip; it is the robot's chain
+    /// when there are no branch points, and what is left once the joints of the other
+    /// branches are locked.
     pub fn chain(
         &self,
         movable: &[bool],
-        joint_names: &[String],
+        independent: &[bool],
         keep_link: Option<usize>,
-    ) -> Result<Vec<usize>, Vec<Invalid>> {
+    ) -> (Vec<usize>, Vec<BranchPoint>) {
         let mut chain = Vec::new();
+        let mut points = Vec::new();
         let mut link = self.root;
         loop {
             let branches: Vec<(usize, Vec<usize>)> = self.child_joints[link]
@@ -228,33 +233,34 @@ impl Tree {
                 .map(|&j| (j, self.movable_below(j, movable)))
                 .filter(|(_, m)| !m.is_empty())
                 .collect();
-            match branches.as_slice() {
-                [] => return Ok(chain),
-                [(j, _)] => {
-                    if movable[*j] {
-                        chain.push(*j);
-                    }
-                    link = self.ends[*j].1;
-                }
-                _ => {
-                    return Err(vec![self.branch_error(
-                        link,
-                        &branches,
-                        joint_names,
-                        keep_link,
-                    )])
-                }
+            let keep = match branches.len() {
+                0 => return (chain, points),
+                1 => 0,
+                _ => self.branch_to_keep(link, &branches, independent, keep_link),
+            };
+            let j = branches[keep].0;
+            if movable[j] {
+                chain.push(j);
             }
+            if branches.len() > 1 {
+                points.push(BranchPoint {
+                    link,
+                    branches,
+                    keep,
+                });
+            }
+            link = self.ends[j].1;
         }
     }
 
-    fn branch_error(
+    /// The branch holding `keep_link`, else the one with the most independent joints.
+    fn branch_to_keep(
         &self,
         link: usize,
         branches: &[(usize, Vec<usize>)],
-        joint_names: &[String],
+        independent: &[bool],
         keep_link: Option<usize>,
-    ) -> Invalid {
+    ) -> usize {
         let in_branch = |first: usize, l: usize| -> bool {
             // Walk up from l to `link`; the branch is the child joint we arrive through.
             let mut l = l;
@@ -267,44 +273,26 @@ impl Tree {
             }
             false
         };
-        let keep = keep_link
+        keep_link
             .and_then(|t| branches.iter().position(|(j, _)| in_branch(*j, t)))
             .unwrap_or_else(|| {
-                // The most movable joints; the first such branch on a tie.
-                let most = branches.iter().map(|(_, m)| m.len()).max().unwrap_or(0);
+                let count = |m: &Vec<usize>| m.iter().filter(|&&k| independent[k]).count();
+                let most = branches.iter().map(|(_, m)| count(m)).max().unwrap_or(0);
                 branches
                     .iter()
-                    .position(|(_, m)| m.len() == most)
+                    .position(|(_, m)| count(m) == most)
                     .unwrap_or(0)
-            });
-        let describe = |(j, m): &(usize, Vec<usize>)| {
-            let names: Vec<&str> = m.iter().map(|&k| joint_names[k].as_str()).collect();
-            format!("through `{}`: {}", joint_names[*j], names.join(", "))
-        };
-        let list: Vec<String> = branches.iter().map(describe).collect();
-        let locks: Vec<String> = branches
-            .iter()
-            .enumerate()
-            .filter(|(b, _)| *b != keep)
-            .flat_map(|(_, (_, m))| m.iter().map(|&k| format!("{}=0", joint_names[k])))
-            .collect();
-        Invalid::new(
-            Subject::Link {
-                index: None,
-                name: self.link_names[link].clone(),
-            },
-            "children",
-            format!(
-                "the robot branches at link `{}` into {} branches with movable joints ({}); trees are not supported yet, only serial chains",
-                self.link_names[link],
-                branches.len(),
-                list.join("; ")
-            ),
-            format!(
-                "keep one branch and lock the joints of the others at a value (CLI `--lock JOINT=VALUE`, Builder `.lock(JOINT, VALUE)`, derive `lock(JOINT = VALUE)`), e.g. to keep the branch through `{}` lock {}",
-                joint_names[branches[keep].0],
-                locks.join(", ")
-            ),
-        )
+            })
     }
+}
+
+/// A link where the tree branches into several branches with movable joints.
+#[derive(Debug)]
+pub struct BranchPoint {
+    /// The link.
+    pub link: usize,
+    /// Each branch: its first joint and its movable joints, depth first.
+    pub branches: Vec<(usize, Vec<usize>)>,
+    /// The index in `branches` of the branch the chain goes on through.
+    pub keep: usize,
 }

@@ -2,8 +2,13 @@
 //! where: badly nested tags, a missing `name`, `<parent>` or `<mass>`, and numbers that do
 //! not parse (`urdf-rs` drops the words of `xyz="1 2 x"` that are not numbers).
 //!
+//! Only what the loader reads is checked (see [`super::strip`]): visual, collision and
+//! extension elements may hold anything.
+//!
 //! It builds a light element tree (names, attributes, byte offsets) and checks the parts of
 //! the URDF schema the loader relies on; `urdf-rs` still does the real parsing afterwards.
+
+use super::strip::kept;
 
 /// An element: name, attributes, children, and the byte offset of its `<`.
 #[derive(Debug)]
@@ -16,6 +21,8 @@ pub struct Element<'a> {
     pub attrs: Vec<(&'a str, &'a str, usize)>,
     /// Child elements, in order.
     pub children: Vec<Element<'a>>,
+    /// Byte offset just after the element (after `/>` or its closing tag's `>`).
+    pub end: usize,
 }
 
 impl<'a> Element<'a> {
@@ -73,7 +80,8 @@ pub fn scan(text: &str) -> Result<Element<'_>, Problem> {
                 find(k, ">").ok_or((k, "closing tag is never closed by `>`".to_string()))?;
             let name = after[..close - k - 2].trim();
             match stack.pop() {
-                Some(open) if open.name == name => {
+                Some(mut open) if open.name == name => {
+                    open.end = close + 1;
                     attach(&mut stack, &mut root, open, k)?;
                 }
                 Some(open) => {
@@ -90,7 +98,8 @@ pub fn scan(text: &str) -> Result<Element<'_>, Problem> {
             }
             i = close + 1;
         } else {
-            let (element, end, self_closing) = start_tag(text, b, k)?;
+            let (mut element, end, self_closing) = start_tag(text, b, k)?;
+            element.end = end;
             if self_closing {
                 attach(&mut stack, &mut root, element, k)?;
             } else if stack.len() >= MAX_DEPTH {
@@ -145,6 +154,7 @@ fn start_tag<'a>(text: &'a str, b: &[u8], k: usize) -> Result<(Element<'a>, usiz
         offset: k,
         attrs: Vec::new(),
         children: Vec::new(),
+        end: k,
     };
     let tag = element.name;
     let unclosed = || (k, format!("start tag <{tag}> is never closed by `>`"));
@@ -203,48 +213,32 @@ fn start_tag<'a>(text: &'a str, b: &[u8], k: usize) -> Result<(Element<'a>, usiz
     }
 }
 
-/// How many numbers an attribute of a URDF element holds, if it is numeric.
+/// How many numbers an attribute of an element the loader reads holds, if it is numeric.
 fn numeric(element: &str, attr: &str) -> Option<usize> {
     match (element, attr) {
-        ("origin", "xyz" | "rpy") | ("axis", "xyz") | ("box", "size") | ("mesh", "scale") => {
-            Some(3)
-        }
-        ("color", "rgba") => Some(4),
+        ("origin", "xyz" | "rpy") | ("axis", "xyz") => Some(3),
         ("mass", "value")
         | ("inertia", "ixx" | "ixy" | "ixz" | "iyy" | "iyz" | "izz")
         | ("limit", "lower" | "upper" | "effort" | "velocity")
         | ("dynamics", "damping" | "friction")
-        | ("mimic", "multiplier" | "offset")
-        | ("cylinder" | "capsule", "radius" | "length")
-        | ("sphere", "radius")
-        | ("calibration", "rising" | "falling")
-        | (
-            "safety_controller",
-            "soft_lower_limit" | "soft_upper_limit" | "k_position" | "k_velocity",
-        ) => Some(1),
+        | ("mimic", "multiplier" | "offset") => Some(1),
         _ => None,
     }
 }
 
-/// The attributes `urdf-rs` requires on an element (`velocity` of `<limit>` only before
-/// URDF 1.2, which defaults it).
+/// The attributes `urdf-rs` requires on an element the loader reads (`velocity` of
+/// `<limit>` only before URDF 1.2, which defaults it).
 fn required(element: &str, attr_defaults: bool) -> &'static [&'static str] {
     match element {
         "limit" if !attr_defaults => &["velocity"],
-        "mesh" | "texture" => &["filename"],
-        "box" => &["size"],
-        "cylinder" | "capsule" => &["radius", "length"],
-        "sphere" => &["radius"],
-        "color" => &["rgba"],
         "axis" => &["xyz"],
         "mimic" => &["joint"],
-        "safety_controller" => &["k_velocity"],
-        "material" => &["name"],
         _ => &[],
     }
 }
 
-/// Checks the URDF schema parts the loader relies on, below the `<robot>` root.
+/// Checks the URDF schema parts the loader relies on, below the `<robot>` root; the elements
+/// it does not read ([`kept`]) are not checked.
 pub fn check_urdf(robot: &Element<'_>) -> Result<(), Problem> {
     // URDF 1.2 and later give <limit> defaults.
     let v12 = robot.attr("version").is_some_and(|v| {
@@ -297,19 +291,16 @@ pub fn check_urdf(robot: &Element<'_>) -> Result<(), Problem> {
                 }
                 check_numbers(e, name, "joint", v12)?;
             }
-            "material" if e.attr("name").is_none() => {
-                return Err((e.offset, "<material> has no `name` attribute".to_string()))
-            }
             _ => {}
         }
     }
     Ok(())
 }
 
-/// Every element below `e` has its required attributes, and every numeric attribute holds
-/// the right count of numbers.
+/// Every element below `e` that the loader reads ([`kept`]) has its required attributes, and
+/// every numeric attribute holds the right count of numbers.
 fn check_numbers(e: &Element<'_>, owner: &str, kind: &str, v12: bool) -> Result<(), Problem> {
-    for c in &e.children {
+    for c in e.children.iter().filter(|c| kept(e.name, c.name)) {
         if let Some(a) = required(c.name, v12).iter().find(|a| c.attr(a).is_none()) {
             return Err((
                 c.offset,
