@@ -385,7 +385,9 @@ fn tip_and_ignored_urdf_dynamics_are_noted() {
         "{}",
         text(&out.stderr)
     );
+}
 
+#[test]
 fn joints_reads_a_urdf_piped_to_standard_input() {
     let urdf = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/ur5.urdf"))
         .unwrap();
