@@ -25,7 +25,7 @@
 //!   [`Robot::from_mr_lists_unchecked`] (as given, like the book's own functions).
 //! - A TOML robot file ([`toml_format`]).
 //! - A URDF file ([`urdf`]).
-//! - A shipped robot by name ([`shipped`]), and [`load`] for any of the above.
+//! - A shipped robot by name ([`shipped`]), and [`load()`](fn@load) for any of the above.
 
 pub mod error;
 pub mod inertia;
