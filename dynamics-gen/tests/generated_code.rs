@@ -108,3 +108,40 @@ fn derivative_of_gravity_matches_finite_differences() {
         }
     }
 }
+
+#[test]
+fn forward_dynamics_doc_names_the_route_taken() {
+    use dynamics_gen::expand::ForwardRoute;
+    for name in ["ur5", "rand7", "pendulum", "mr_ur5"] {
+        let robot = dynamics_model::load(name, &LoadOptions::default()).expect("shipped");
+        let generated = dynamics_gen::generate_impl(&robot, &Options::default()).unwrap();
+        let code = generated.impl_block.to_string();
+        let (said, other) = match generated.dynamics.forward_route {
+            ForwardRoute::Aba => ("articulated-body algorithm, unrolled", "LDLᵀ factorisation"),
+            ForwardRoute::Ldlt => ("LDLᵀ factorisation", "articulated-body algorithm, unrolled"),
+        };
+        assert!(code.contains(said), "{name}: {said}");
+        assert!(!code.contains(other), "{name}: {other}");
+    }
+}
+
+#[test]
+fn output_does_not_depend_on_where_the_file_lives() {
+    let text = dynamics_model::shipped::get("pendulum").unwrap().text;
+    let base = std::env::temp_dir().join(format!("dynamics-gen-where-{}", std::process::id()));
+    let mut outputs = Vec::new();
+    for sub in ["a", "b/c/d"] {
+        let dir = base.join(sub);
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("arm.toml");
+        std::fs::write(&file, text).unwrap();
+        let code = dynamics_gen::Builder::new(file.to_string_lossy().into_owned())
+            .generate()
+            .unwrap();
+        assert!(!code.contains(base.to_str().unwrap()), "{code}");
+        assert!(code.contains("#[rustfmt::skip]"));
+        outputs.push(code);
+    }
+    assert_eq!(outputs[0], outputs[1]);
+    std::fs::remove_dir_all(&base).unwrap();
+}
