@@ -35,6 +35,13 @@
 //!   Consequently rebuilding any stored node through its constructor
 //!   returns the node itself.
 //!
+//! # Identically zero nodes
+//!
+//! A cancellation spread over several nodes is invisible to the local
+//! rules; [`ExprGraph::prune_zeros`] (in [`zeros`]) finds such nodes by
+//! evaluating the graph at random inputs against a rounding bound, and
+//! rebuilds the graph with them replaced by the constant 0.
+//!
 //! # Numerical assumptions
 //!
 //! All inputs are assumed finite, and divisors non-zero wherever the
@@ -52,6 +59,7 @@ pub mod sexp;
 mod simplify;
 mod stats;
 mod verify;
+pub mod zeros;
 
 #[cfg(test)]
 mod random_tests;
