@@ -145,3 +145,27 @@ fn output_does_not_depend_on_where_the_file_lives() {
     assert_eq!(outputs[0], outputs[1]);
     std::fs::remove_dir_all(&base).unwrap();
 }
+
+/// The Panda's first axis is vertical, so g₁ ≡ 0: the generated gravity returns the literal
+/// zero there instead of ~20 operations of rounding noise (±1e-15).
+#[test]
+fn panda_gravity_first_output_is_literal_zero() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/robots/panda.urdf");
+    let options = LoadOptions {
+        tip: Some("panda_link8".into()),
+        ..Default::default()
+    };
+    let robot = dynamics_model::load_file(&path, &options).expect("panda loads");
+    let code = generate_file(&robot, &Options::default(), "panda.urdf").expect("generates");
+    let start = code.find("fn gravity(").expect("gravity function");
+    let body = &code[start..];
+    let storage = body.find("ArrayStorage([").expect("output storage");
+    let first = body[storage + "ArrayStorage([".len()..]
+        .trim_start()
+        .strip_prefix('[')
+        .expect("one column")
+        .trim_start();
+    let first = &first[..first.find(',').expect("seven outputs")];
+    assert_eq!(first.trim(), "0.0", "g₁ = {first}");
+}

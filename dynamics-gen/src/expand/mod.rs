@@ -21,6 +21,12 @@
 //! two-joint pendulum, the UR5 and 12-joint random chains, LDLᵀ on the Panda and rand7.
 //! Likewise each Newton–Euler expansion keeps the cheapest of three equal forms.
 //!
+//! Before the routes are compared, the graph is rebuilt by [`ExprGraph::prune_zeros`] from
+//! the outputs and both forward-dynamics candidates: nodes that are identically zero up to
+//! rounding (a cancellation no insertion rule sees, such as `g₁` of a robot whose first
+//! axis is vertical) become exact zeros, so both the route choice and the emitted code see
+//! the pruned counts. The choice among the Newton–Euler forms is made before pruning.
+//!
 //! The leaves of the graph are the inputs of the generated functions: `q`, `q̇`, `q̈`, `τ`
 //! (groups [`Q`], [`QD`], [`QDD`], [`TAU`]), and `sin q_i`, `cos q_i` of revolute joints.
 
@@ -87,15 +93,16 @@ pub struct Dynamics {
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
 /// by the cheaper of the two routes (ties: [`ForwardRoute::Ldlt`]).
 pub fn expand(robot: &Robot) -> Dynamics {
-    expand_routes(robot, None)
+    expand_routes(robot, None, true)
 }
 
 /// [`expand`] with forward dynamics by the given route.
 pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
-    expand_routes(robot, Some(route))
+    expand_routes(robot, Some(route), true)
 }
 
-fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
+/// The expansion; `prune`: replace identically zero nodes by 0 ([`ExprGraph::prune_zeros`]).
+pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: bool) -> Dynamics {
     let frames = frames::joint_frames(robot);
     let n = robot.dof();
     let mut g = ExprGraph::new();
@@ -143,6 +150,29 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
         }
     }
     let by_aba = by_aba.unwrap_or_default();
+    // Identically zero nodes (cancellations spread over a sum, such as g₁ of a robot with
+    // a vertical first axis) become exact zeros, before the routes are compared. Only the
+    // candidate routes are rebuilt (the losing Newton–Euler forms are dropped).
+    let candidates: Vec<&[ExprId]> = match route {
+        None => vec![&by_ldlt, &by_aba],
+        Some(ForwardRoute::Ldlt) => vec![&by_ldlt],
+        Some(ForwardRoute::Aba) => vec![&by_aba],
+    };
+    let mut roots: Vec<&[ExprId]> = vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics];
+    roots.extend(candidates);
+    let (g, pruned) = if prune {
+        g.prune_zeros(&roots, &sample_range, ZERO_SEED)
+    } else {
+        (g, roots.iter().map(|r| r.to_vec()).collect())
+    };
+    let mut pruned = pruned.into_iter();
+    let mut next = || pruned.next().unwrap_or_default();
+    let (mass_matrix, coriolis, gravity, inverse_dynamics) = (next(), next(), next(), next());
+    let (by_ldlt, by_aba) = match route {
+        None => (next(), next()),
+        Some(ForwardRoute::Ldlt) => (next(), Vec::new()),
+        Some(ForwardRoute::Aba) => (Vec::new(), next()),
+    };
     let route = route.unwrap_or_else(|| {
         if g.op_counts(&by_aba).total() < g.op_counts(&by_ldlt).total() {
             ForwardRoute::Aba
@@ -163,6 +193,19 @@ fn expand_routes(robot: &Robot, route: Option<ForwardRoute>) -> Dynamics {
         inverse_dynamics,
         forward_dynamics,
         forward_route: route,
+    }
+}
+
+/// Seed of the random inputs at which [`ExprGraph::prune_zeros`] looks for zero nodes.
+const ZERO_SEED: u64 = 0x5EED_2E60;
+
+/// Where the zero test samples the inputs: `q` in `[−π, π]` (every angle, and its sine and
+/// cosine, takes general values), `q̇`, `q̈`, `τ` in `[−1, 1]`.
+fn sample_range(x: Input) -> (f64, f64) {
+    use std::f64::consts::PI;
+    match x.group {
+        Q => (-PI, PI),
+        _ => (-1.0, 1.0),
     }
 }
 

@@ -307,3 +307,102 @@ fn every_aba_form_matches_ldlt() {
     }
     println!("ABA (every form) vs LDLᵀ on 60 random chains: worst relative error {worst:e}");
 }
+
+fn panda() -> Robot {
+    use dynamics_model::LoadOptions;
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/robots/panda.urdf");
+    let options = LoadOptions {
+        tip: Some("panda_link8".into()),
+        ..Default::default()
+    };
+    dynamics_model::load_file(&path, &options).expect("panda loads")
+}
+
+/// The Panda's first axis is vertical, so g₁ ≡ 0: it was a sum of ~20 operations returning
+/// ±1e-15 before the zero pass, and is the exact constant 0 now.
+#[test]
+fn panda_g1_is_an_exact_zero() {
+    let r = panda();
+    let d = expand(&r);
+    assert!(
+        d.graph.is_zero(d.gravity[0]),
+        "g₁ = {}",
+        d.graph.to_sexp(d.gravity[0])
+    );
+    let unpruned = expand_routes(&r, None, false);
+    assert!(!unpruned.graph.is_zero(unpruned.gravity[0]));
+    let before = unpruned.graph.op_counts(&unpruned.gravity);
+    let after = d.graph.op_counts(&d.gravity);
+    assert!(
+        after.total() < before.total(),
+        "gravity {before} -> {after}"
+    );
+    let before = unpruned.graph.op_counts(&unpruned.inverse_dynamics);
+    let after = d.graph.op_counts(&d.inverse_dynamics);
+    assert!(
+        after.total() <= before.total(),
+        "inverse dynamics {before} -> {after}"
+    );
+}
+
+/// The zero pass never removes a non-zero term: on random chains, with either route, the
+/// pruned graph evaluates to the unpruned one within 1e-12 (relative to the largest entry of
+/// each function) at fresh random states.
+#[test]
+fn pruning_zeros_keeps_values_on_random_chains() {
+    use dynamics_model::random::{random_chain, ChainSpec, Rng};
+    let mut worst = 0.0f64;
+    let mut pruned_ops = 0usize;
+    for seed in 0..48u64 {
+        let dof = 1 + (seed % 12) as usize;
+        let r = random_chain(
+            seed + 1000,
+            ChainSpec {
+                dof,
+                prismatic: 0.3,
+            },
+        );
+        for route in [ForwardRoute::Ldlt, ForwardRoute::Aba] {
+            let a = expand_routes(&r, Some(route), true);
+            let b = expand_routes(&r, Some(route), false);
+            a.graph.verify().unwrap();
+            let funcs = |d: &Dynamics| {
+                [
+                    d.mass_matrix.clone(),
+                    d.coriolis.clone(),
+                    d.gravity.clone(),
+                    d.inverse_dynamics.clone(),
+                    d.forward_dynamics.clone(),
+                ]
+            };
+            let (fa, fb) = (funcs(&a), funcs(&b));
+            let all_a: Vec<ExprId> = fa.concat();
+            let all_b: Vec<ExprId> = fb.concat();
+            pruned_ops += b.graph.op_counts(&all_b).total() - a.graph.op_counts(&all_a).total();
+            let mut rng = Rng::new(seed ^ 0xC0FFEE);
+            for _ in 0..4 {
+                let q: Vec<f64> = (0..dof).map(|_| rng.uniform(-3.0, 3.0)).collect();
+                let qd: Vec<f64> = (0..dof).map(|_| rng.uniform(-2.0, 2.0)).collect();
+                let qdd: Vec<f64> = (0..dof).map(|_| rng.uniform(-2.0, 2.0)).collect();
+                let tau: Vec<f64> = (0..dof).map(|_| rng.uniform(-10.0, 10.0)).collect();
+                for (k, (ra, rb)) in fa.iter().zip(&fb).enumerate() {
+                    let x = eval(&a, ra, &q, &qd, &qdd, &tau);
+                    let y = eval(&b, rb, &q, &qd, &qdd, &tau);
+                    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let err = x
+                        .iter()
+                        .zip(&y)
+                        .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+                    assert!(
+                        err <= 1e-12 * scale + 1e-300,
+                        "chain {seed} ({dof} joints) {route:?} function {k}: error {err:e} \
+                         (scale {scale:e})\n got {x:?}\nwant {y:?}"
+                    );
+                    worst = worst.max(err / (scale + 1e-300));
+                }
+            }
+        }
+    }
+    println!("pruned vs unpruned: worst relative error {worst:e}; {pruned_ops} operations pruned");
+}

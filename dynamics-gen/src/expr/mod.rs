@@ -26,12 +26,21 @@
 //!   `c*(d*x) -> (c*d)*x`, constant factors hoisted out of products
 //!   (`(c*x)*y -> c*(x*y)`), negations pulled out of products, quotients
 //!   and `sin` (and dropped by `cos`), `a+(-b) -> a-b`, `(-a)+b -> b-a`,
-//!   `a-(-b) -> a+b`, `x/1 -> x`, `x/2^k -> 2^-k*x`, `0/x -> 0`,
+//!   `a-(-b) -> a+b`, like terms `c*x + d*x -> (c+d)*x` and
+//!   `c*x - d*x -> (c-d)*x` (with `x = 1*x`, `-x = (-1)*x`; an exact 0
+//!   when the factors cancel), `x/1 -> x`, `x/2^k -> 2^-k*x`, `0/x -> 0`,
 //!   `x/x -> 1`. `Add` and `Mul` operands are in ascending id order, with a
 //!   constant factor always first in `Mul` (`c*x`). Products are never
 //!   distributed over sums (that would blow up the expression size).
 //!   Consequently rebuilding any stored node through its constructor
 //!   returns the node itself.
+//!
+//! # Identically zero nodes
+//!
+//! A cancellation spread over several nodes is invisible to the local
+//! rules; [`ExprGraph::prune_zeros`] (in [`zeros`]) finds such nodes by
+//! evaluating the graph at random inputs against a rounding bound, and
+//! rebuilds the graph with them replaced by the constant 0.
 //!
 //! # Numerical assumptions
 //!
@@ -50,6 +59,7 @@ pub mod sexp;
 mod simplify;
 mod stats;
 mod verify;
+pub mod zeros;
 
 #[cfg(test)]
 mod random_tests;

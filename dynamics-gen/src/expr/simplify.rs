@@ -13,8 +13,11 @@
 //! such as `x*0 -> 0`, `0/x -> 0` and `x/x -> 1` assume that every input is
 //! finite and that divisors are non-zero where they are evaluated.
 //! Sign rewrites (`-(a-b) -> b-a`, `(-a)*b -> -(a*b)`, ...) are exact;
-//! re-association of constant factors (`c*(d*x) -> (c*d)*x`) may change
-//! the result by ordinary rounding, never more.
+//! re-association of constant factors (`c*(d*x) -> (c*d)*x`) and merging
+//! of like terms (`c*x + d*x -> (c+d)*x`, `c*x - d*x -> (c-d)*x`) may
+//! change the result by ordinary rounding, never more. A like-term merge
+//! whose factor is exactly zero (`d == -c` in a sum, `d == c` in a
+//! difference) gives the exact constant 0, as `x - x` does.
 
 use super::constant::Const;
 use super::graph::ExprGraph;
@@ -93,6 +96,31 @@ impl ExprGraph {
         }
     }
 
+    /// `Some((c, x))` if `id` is a multiple `c*x` of a non-constant `x`:
+    /// `Mul(c, x)` gives `(c, x)`, `Neg(x)` gives `(-1, x)` and any other
+    /// non-constant node `x` gives `(1, x)` (`x = 1*x`). `None` for constants.
+    pub(super) fn term(&self, id: ExprId) -> Option<(f64, ExprId)> {
+        if let Some(t) = self.scaled(id) {
+            return Some(t);
+        }
+        if let Some(x) = self.neg_arg(id) {
+            return Some((-1.0, x));
+        }
+        self.as_const(id).is_none().then_some((1.0, id))
+    }
+
+    /// `Some((c ± d, x))` if `a = c*x` and `b = d*x` are multiples of the same
+    /// non-constant `x` (see [`Self::term`]) and the merged factor `c ± d`
+    /// (`+` if `add`) is finite. The merged factor is rounded once (IEEE),
+    /// so `c*x + d*x -> (c+d)*x` may change the value by ordinary rounding;
+    /// `c + d == 0` (e.g. `d == -c`) is exact and gives the constant 0.
+    pub(super) fn like_terms(&self, a: ExprId, b: ExprId, add: bool) -> Option<(f64, ExprId)> {
+        let (c, x) = self.term(a)?;
+        let (d, y) = self.term(b)?;
+        let s = if add { c + d } else { c - d };
+        (x == y && s.is_finite()).then_some((s, x))
+    }
+
     fn both_const(&self, a: ExprId, b: ExprId) -> bool {
         self.as_const(a).is_some() && self.as_const(b).is_some()
     }
@@ -118,7 +146,8 @@ impl ExprGraph {
 
     /// `a + b`. Rules: fold constants, `x+0 -> x`, `0+x -> x`,
     /// `(-x)+(-y) -> -(x+y)`, `a+(-y) -> a-y`, `(-x)+b -> b-x`,
-    /// `x+x -> 2*x`; operands stored in ascending id order.
+    /// `x+x -> 2*x`, like terms `c*x + d*x -> (c+d)*x` (also `x + d*x`;
+    /// `0` if `c+d == 0`); operands stored in ascending id order.
     pub fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
         if let Some(k) = self.fold_node(Node::Add(a, b)) {
             return k;
@@ -143,12 +172,18 @@ impl ExprGraph {
                 let two = self.constant(2.0);
                 return self.mul(two, a);
             }
+            if let Some((s, x)) = self.like_terms(a, b, true) {
+                let k = self.constant(s);
+                return self.mul(k, x);
+            }
         }
         self.intern(Node::Add(a.min(b), a.max(b)))
     }
 
     /// `a - b`. Rules: fold constants, `x-0 -> x`, `0-x -> -x`, `x-x -> 0`,
-    /// `a-(-y) -> a+y`, `(-x)-b -> -(x+b)`.
+    /// `a-(-y) -> a+y`, `(-x)-b -> -(x+b)`, like terms
+    /// `c*x - d*x -> (c-d)*x` (also `x - d*x`, `c*x - x`; `0` if `c == d`,
+    /// e.g. for two distinct nodes `c*x`).
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
         if let Some(k) = self.fold_node(Node::Sub(a, b)) {
             return k;
@@ -169,6 +204,10 @@ impl ExprGraph {
             if let Some(x) = self.neg_arg(a) {
                 let s = self.add(x, b);
                 return self.neg(s);
+            }
+            if let Some((s, x)) = self.like_terms(a, b, false) {
+                let k = self.constant(s);
+                return self.mul(k, x);
             }
         }
         self.intern(Node::Sub(a, b))

@@ -255,3 +255,137 @@ fn hash_consing_builds_nothing_twice() {
     }
     assert_eq!(t.g.len(), n + 2);
 }
+
+#[test]
+fn like_terms_cancel_exactly() {
+    let mut t = setup();
+    let (x, y) = (t.x, t.y);
+    let (c, mc) = (t.c(0.176), t.c(-0.176));
+    let z = t.c(0.0);
+    let g = &mut t.g;
+    let s = g.sin(x);
+    let cs = g.mul(c, s);
+    let mcs = g.mul(mc, s);
+    assert_eq!(g.add(cs, mcs), z, "c*x + (-c)*x -> 0");
+    assert_eq!(g.add(mcs, cs), z, "(-c)*x + c*x -> 0");
+    // c*x - c*x with two distinct nodes of the same value: (c*y)*x hoists
+    // to c*(x*y), so build `c*(s*y)` twice through different routes.
+    let sy = g.mul(s, y);
+    let a = g.mul(c, sy);
+    let cy = g.mul(c, y);
+    let b = g.mul(s, cy);
+    assert_eq!(a, b, "hash-consing shares c*(s*y)");
+    assert_eq!(g.sub(a, b), z);
+    // -(c*x) is (-c)*x, so c*x - (-(c*x)) merges too.
+    let n = g.neg(cs);
+    assert_eq!(n, mcs);
+    let two_c = g.constant(2.0 * 0.176);
+    assert_eq!(
+        {
+            let r = g.sub(cs, n);
+            *g.node(r)
+        },
+        Node::Mul(two_c, s)
+    );
+    // x + (-1)*x and x - 1*x
+    let nx = g.neg(s);
+    assert_eq!(g.add(s, nx), z);
+    let one = g.one();
+    let os = g.mul(one, s);
+    assert_eq!(g.sub(s, os), z);
+    g.verify().unwrap();
+}
+
+#[test]
+fn like_terms_merge_factors() {
+    let mut t = setup();
+    let (x, y) = (t.x, t.y);
+    let (two, three, half) = (t.c(2.0), t.c(3.0), t.c(0.5));
+    let g = &mut t.g;
+    let xy = g.mul(x, y);
+    let a = g.mul(two, xy);
+    let b = g.mul(three, xy);
+    let five = g.constant(5.0);
+    assert_eq!(
+        {
+            let r = g.add(a, b);
+            *g.node(r)
+        },
+        Node::Mul(five, xy),
+        "2x + 3x -> 5x"
+    );
+    assert_eq!(
+        {
+            let r = g.sub(a, b);
+            *g.node(r)
+        },
+        Node::Neg(xy),
+        "2x - 3x -> -x"
+    );
+    assert_eq!(g.sub(b, a), xy, "3x - 2x -> x");
+    assert_eq!(
+        {
+            let r = g.add(xy, a);
+            *g.node(r)
+        },
+        Node::Mul(three, xy),
+        "x + 2x -> 3x"
+    );
+    assert_eq!(
+        {
+            let r = g.add(a, xy);
+            *g.node(r)
+        },
+        Node::Mul(three, xy),
+        "2x + x -> 3x"
+    );
+    assert_eq!(g.sub(a, xy), xy, "2x - x -> x");
+    let hx = g.mul(half, xy);
+    assert_eq!(
+        {
+            let r = g.sub(xy, hx);
+            *g.node(r)
+        },
+        Node::Mul(half, xy),
+        "x - 0.5x -> 0.5x"
+    );
+    // -x - 2x: (-x) - b -> -(x + 2x) -> -(3x) -> (-3)*x
+    let nxy = g.neg(xy);
+    let m3 = g.constant(-3.0);
+    assert_eq!(
+        {
+            let r = g.sub(nxy, a);
+            *g.node(r)
+        },
+        Node::Mul(m3, xy)
+    );
+    // Different bases are not merged.
+    let bx = g.mul(three, x);
+    let s = g.add(a, bx);
+    assert_eq!(*g.node(s), Node::Add(a.min(bx), a.max(bx)));
+    // Merged factors that overflow are left alone.
+    let big = g.constant(1.5e308);
+    let p = g.mul(big, xy);
+    let q = g.add(p, p);
+    assert_eq!(*g.node(q), Node::Mul(two, p), "x+x keeps 2*(big*x)");
+    let r = g.add(p, q);
+    assert!(
+        matches!(g.node(r), Node::Add(..)),
+        "1.5e308 + 3e308 overflows"
+    );
+    g.verify().unwrap();
+}
+
+#[test]
+fn verify_rejects_unmerged_like_terms() {
+    let mut t = setup();
+    let (x, c, d) = (t.x, t.c(2.0), t.c(3.0));
+    let g = &mut t.g;
+    let a = g.mul(c, x);
+    let b = g.mul(d, x);
+    let node = Node::Add(a, b);
+    let id = ExprId(g.nodes.len() as u32);
+    g.nodes.push(node);
+    g.memo.insert(node, id);
+    assert!(g.verify().unwrap_err().contains("unmerged like terms"));
+}

@@ -71,12 +71,17 @@ impl ExprGraph {
             Node::Add(a, b) => {
                 ensure(k(a) != Some(0.0) && k(b) != Some(0.0), "adds zero")?;
                 ensure(!is_neg(a) && !is_neg(b), "adds a negation")?;
-                ensure(a < b, "non-canonical order or x+x")
+                ensure(a < b, "non-canonical order or x+x")?;
+                ensure(self.like_terms(a, b, true).is_none(), "unmerged like terms")
             }
             Node::Sub(a, b) => {
                 ensure(k(a) != Some(0.0) && k(b) != Some(0.0), "subtracts zero")?;
                 ensure(!is_neg(a) && !is_neg(b), "subtracts a negation")?;
-                ensure(a != b, "x-x")
+                ensure(a != b, "x-x")?;
+                ensure(
+                    self.like_terms(a, b, false).is_none(),
+                    "unmerged like terms",
+                )
             }
             Node::Mul(a, b) => {
                 ensure(k(b).is_none(), "constant is not the first factor")?;
