@@ -26,10 +26,11 @@ fi
 P=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix
 if [ ! -x "$BIN" ] || [ "$HERE/pinocchio_bench.cpp" -nt "$BIN" ]; then
   echo "compiling bench/pinocchio_bench.cpp (a few minutes) ..." >&2
-  ${CXX:-g++} -std=c++17 -O3 -march=native -DNDEBUG -Wno-deprecated-declarations \
+  ${CXX:-g++} -std=c++17 -O3 -march=native -DNDEBUG -Wno-deprecated-declarations -Wno-stringop-overread \
     -I"$P/include" -I"$P/include/eigen3" -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
     -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$HERE/pinocchio_bench.cpp" -o "$BIN.tmp" \
-    -L"$P/lib" -Wl,-rpath,"$P/lib" -lboost_serialization
+    -L"$P/lib" -Wl,-rpath,"$P/lib" -lboost_serialization \
+    || { echo "compiling bench/pinocchio_bench.cpp failed (exit $?)" >&2; exit 1; }
   mv "$BIN.tmp" "$BIN"
 fi
 ARGS=()
