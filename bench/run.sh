@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# One-command speed comparison: Pinocchio's C++ algorithms, then `cargo bench -p dynamics-tests
+# --bench dynamics`, back to back, then a side-by-side table.  See bench/README.md.
+#   bash bench/run.sh
+#   ROBOTS="ur5" CALLS=20000 REPS=3 CRITERION_ARGS="--warm-up-time 0.2 --measurement-time 0.5" bash bench/run.sh
+# Environment: ROBOTS (default "ur5 panda rand7 double_pendulum"), CALLS (100000), REPS (5),
+# CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR.
+# First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
+set -euo pipefail
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/.." && pwd)
+CACHE=${XDG_CACHE_HOME:-$HOME/.cache}/dynamics-gen-bench
+VENV=$CACHE/venv
+BIN=$CACHE/pinocchio_bench
+ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum"}
+CALLS=${CALLS:-100000}
+REPS=${REPS:-5}
+mkdir -p "$CACHE/models"
+
+# 1. Pinocchio: venv, models (URDF -> binary via the Python package), native build, timing.
+[ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
+if ! cmp -s "$HERE/requirements.txt" "$CACHE/requirements.installed"; then
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -r "$HERE/requirements.txt"
+  cp "$HERE/requirements.txt" "$CACHE/requirements.installed"
+fi
+P=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix
+if [ ! -x "$BIN" ] || [ "$HERE/pinocchio_bench.cpp" -nt "$BIN" ]; then
+  echo "compiling bench/pinocchio_bench.cpp (a few minutes) ..." >&2
+  ${CXX:-g++} -std=c++17 -O3 -march=native -DNDEBUG -Wno-deprecated-declarations -Wno-stringop-overread \
+    -I"$P/include" -I"$P/include/eigen3" -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
+    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$HERE/pinocchio_bench.cpp" -o "$BIN.tmp" \
+    -L"$P/lib" -Wl,-rpath,"$P/lib" -lboost_serialization \
+    || { echo "compiling bench/pinocchio_bench.cpp failed (exit $?)" >&2; exit 1; }
+  mv "$BIN.tmp" "$BIN"
+fi
+ARGS=()
+for r in $ROBOTS; do
+  u=$ROOT/tests/data/robots/$r.urdf
+  [ -f "$u" ] || { echo "no URDF $u" >&2; exit 1; }
+  "$VENV/bin/python" -c 'import sys, pinocchio as pin; pin.buildModelFromUrdf(sys.argv[1]).saveToBinary(sys.argv[2])' \
+    "$u" "$CACHE/models/$r.bin"
+  ARGS+=("$r=$CACHE/models/$r.bin")
+done
+echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
+echo "# robot           nv algo     median_ns     min_ns"
+"$BIN" --calls "$CALLS" --reps "$REPS" "${ARGS[@]}" | tee "$CACHE/pinocchio.txt"
+[ "${SKIP_CARGO:-0}" = 1 ] && exit 0
+
+# 2. Our generated code, right after (criterion filter: the same robots).
+START=$(date +%s)
+FILTER="^($(echo $ROBOTS | tr ' ' '|'))/"
+(cd "$ROOT" && cargo bench -p dynamics-tests --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
+
+# 3. Side by side: criterion medians of this run only (estimates.json newer than START).
+CRIT=${CARGO_TARGET_DIR:-$ROOT/target}/criterion
+"$VENV/bin/python" - "$CACHE/pinocchio.txt" "$CRIT" "$START" <<'EOF'
+import json, os, sys
+pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])
+ours = {"rnea": "inverse_dynamics", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics"}
+print(f"\n{'robot':<16} {'pinocchio':<9} {'pin_ns':>8} {'ours':<17} {'ours_ns':>8} {'ratio':>6}")
+for line in open(pin_file):
+    robot, _nv, algo, med, _mn = line.split()
+    est = os.path.join(crit, robot, "generated_" + ours[algo], "new", "estimates.json")
+    ns = None
+    if os.path.exists(est) and os.path.getmtime(est) >= start:
+        ns = json.load(open(est))["median"]["point_estimate"]
+    cell = f"{ns:8.1f} {float(med) / ns:5.1f}x" if ns else f"{'-':>8} {'-':>6}"
+    print(f"{robot:<16} {algo:<9} {float(med):8.1f} {ours[algo]:<17} {cell}")
+EOF
