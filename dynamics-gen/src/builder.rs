@@ -88,7 +88,9 @@ impl Builder {
         self
     }
 
-    /// URDF: the link whose frame is the end-effector frame {n+1}.
+    /// URDF: the link whose frame is the end-effector frame {n+1}. The generated code has no
+    /// pose or Jacobian functions yet, so today this changes nothing in it (the header records
+    /// it; the CLI's `eval` uses it for `end_effector_pose` and `f_tip`).
     pub fn tip(mut self, link: impl Into<String>) -> Self {
         self.options.load.tip = Some(link.into());
         self

@@ -59,7 +59,9 @@
 //! ```
 //!
 //! Options: `scalar = "f32"`, `no_std`, `nalgebra = path::to::nalgebra`,
-//! `gravity = [gx, gy, gz]`, and for URDF `tip = "LINK"` and `lock(JOINT = VALUE, ..)`.
+//! `gravity = [gx, gy, gz]`, `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
+//! and for URDF `tip = "LINK"` and `lock(JOINT = VALUE, ..)`. (`tip` and the TOML
+//! `end_effector` change nothing in the generated code yet: it has no pose functions.)
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the
 //! file changes. The environment variable [`derive::MANIFEST_DIR_OVERRIDE`] replaces
 //! `CARGO_MANIFEST_DIR` when set.
