@@ -40,6 +40,7 @@ fn check<R: Dynamics<f64, N, N>, const N: usize>(robot: &R) {
 }
 
 #[test]
+#[allow(clippy::approx_constant)] // the URDF's 3.14159265359, as written, not π
 fn generated_robots_implement_the_runtime_trait() {
     check(&Ur5);
     check(&Pendulum);
