@@ -208,8 +208,8 @@ impl Builder {
         match self.compile() {
             Ok(path) => Some(path),
             Err(e) => {
-                for line in e.to_string().lines() {
-                    println!("cargo::error={line}");
+                for line in cargo_errors(&e) {
+                    println!("{line}");
                 }
                 None
             }
@@ -318,6 +318,14 @@ impl Builder {
     }
 }
 
+/// `e` as `cargo::error=` build-script lines, one per line of its message.
+fn cargo_errors(e: &Error) -> Vec<String> {
+    e.to_string()
+        .lines()
+        .map(|line| format!("cargo::error={line}"))
+        .collect()
+}
+
 /// Writes `code` to `path` unless the file already holds exactly `code`.
 fn write_if_changed(path: &Path, code: &str) -> Result<(), Error> {
     if std::fs::read_to_string(path).is_ok_and(|old| old == code) {
@@ -416,6 +424,34 @@ mod tests {
         std::fs::write(&robot, "name = ").unwrap();
         let err = b.generate().unwrap_err().to_string();
         assert!(err.contains("my_pendulum.toml"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn errors_become_one_cargo_error_line_each() {
+        let e = Builder::new("no_such_robot").generate().unwrap_err();
+        let lines = cargo_errors(&e);
+        assert_eq!(lines.len(), e.to_string().lines().count());
+        assert!(
+            lines[0].starts_with("cargo::error=unknown robot `no_such_robot`"),
+            "{lines:?}"
+        );
+        // A multi-line model error (two invalid fields) gives one directive per line.
+        let text = shipped::get("pendulum")
+            .unwrap()
+            .text
+            .replace("mass = 2.0", "mass = -2.0");
+        let dir = temp_dir("report");
+        let robot = dir.join("bad.toml");
+        std::fs::write(&robot, text).unwrap();
+        let e = Builder::new(robot.to_string_lossy().into_owned())
+            .generate()
+            .unwrap_err();
+        let lines = cargo_errors(&e);
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        assert!(lines
+            .iter()
+            .all(|l| l.starts_with("cargo::error=") && !l.contains('\n')));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
