@@ -63,22 +63,14 @@ fn singular_joint(robot: &Robot) -> Option<usize> {
     let motions = expand::joint_motions(&mut g, &frames, &q);
     let m = expand::crba::crba(&mut g, &motions);
     let mut first_singular = vec![None; SAMPLES];
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut rng = crate::expr::zeros::SplitMix(0x9e37_79b9_7f4a_7c15);
     for found in &mut first_singular {
         let values: Vec<f64> = robot
             .joints
             .iter()
-            .map(|j| {
-                // SplitMix64, mapped to [−1, 1): deterministic, no dependency.
-                state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-                let mut z = state;
-                z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-                z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-                let u = ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
-                match j.kind {
-                    JointKind::Revolute => u * std::f64::consts::PI,
-                    JointKind::Prismatic => 0.5 * u,
-                }
+            .map(|j| match j.kind {
+                JointKind::Revolute => rng.uniform(-std::f64::consts::PI, std::f64::consts::PI),
+                JointKind::Prismatic => rng.uniform(-0.5, 0.5),
             })
             .collect();
         let mv = g.eval(&m, &|x| values[x.index as usize]);

@@ -13,7 +13,9 @@
 //! once its operand is replaced (analytic functions have no zero divisors, so a product is
 //! identically zero only if a factor is).
 //!
-//! Every live node `v` is evaluated at [`SAMPLES`] seeded random input vectors `x_k`
+//! Every live node `v` is evaluated (sines and cosines through `libm`, as constant folding
+//! does, so the decision does not depend on the host) at [`SAMPLES`] seeded random input
+//! vectors `x_k`
 //! together with its *magnitude* `m(v)`, a first-order bound on how much the rounding
 //! errors of the evaluation can move `v` (relative errors of size `u` in every leaf and
 //! operation, to first order):
@@ -83,11 +85,12 @@ pub const SAMPLES: usize = 4;
 /// Multiple of `ε` (times the magnitude `m`) below which a sum counts as rounding noise.
 pub const TOL_FACTOR: f64 = 1.0;
 
-/// A SplitMix64 stream (deterministic on every host).
-struct SplitMix(u64);
+/// A SplitMix64 stream (deterministic on every host; also the samples of
+/// [`crate::check`]).
+pub(crate) struct SplitMix(pub(crate) u64);
 
 impl SplitMix {
-    fn next(&mut self) -> u64 {
+    pub(crate) fn next(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -96,7 +99,7 @@ impl SplitMix {
     }
 
     /// Uniform in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+    pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         let u = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
         lo + (hi - lo) * u
     }
@@ -165,11 +168,11 @@ impl ExprGraph {
                         (r, m(a) / (2.0 * r))
                     }
                     Node::Sin(a) => {
-                        let (s, c) = v(a).sin_cos();
+                        let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
                         (s, c.abs() * m(a) + s.abs())
                     }
                     Node::Cos(a) => {
-                        let (s, c) = v(a).sin_cos();
+                        let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
                         (c, s.abs() * m(a) + c.abs())
                     }
                 };
