@@ -402,3 +402,22 @@ fn joints_reads_a_urdf_piped_to_standard_input() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.starts_with("error: <stdin>:"), "{err}");
 }
+
+#[test]
+fn generate_from_standard_input_records_the_hash_of_what_it_read() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/pendulum.toml");
+    let toml = std::fs::read_to_string(path).unwrap();
+    let out = run_with_stdin(&["generate", "-", "--name", "Pendulum"], &toml);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let piped = text(&out.stdout);
+    let hash = dynamics_gen::emit::provenance::sha256_hex(toml.as_bytes());
+    assert!(
+        piped.contains(&format!("// Source: `<stdin>` (sha256 {hash}).")),
+        "{}",
+        &piped[..400]
+    );
+    // The code itself is the file's (only the source's name differs).
+    let from_file = text(&run(&["generate", "pendulum", "--name", "Pendulum"]).stdout);
+    let body = |s: &str| s[s.find("#[allow(").unwrap()..].to_string();
+    assert_eq!(body(&piped), body(&from_file));
+}

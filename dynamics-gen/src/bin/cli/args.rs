@@ -111,10 +111,35 @@ impl ModelArgs {
     /// ([`dynamics_gen::check_robot`]), so that `generate`, `stats`, `eval` and `joints`
     /// accept and refuse the same robots.
     pub fn load(&self) -> Result<Robot, String> {
-        let robot = dynamics_gen::dynamics_model::load(&self.robot, &self.load_options())
-            .map_err(|e| e.to_string())?;
+        Ok(self.load_with_source()?.0)
+    }
+
+    /// [`ModelArgs::load`], and the source's name and bytes as the generated header records
+    /// them (`<stdin>` for `-`, `shipped robot NAME`, or the path as given).
+    pub fn load_with_source(&self) -> Result<(Robot, String, Option<Vec<u8>>), String> {
+        use dynamics_gen::dynamics_model::{load, shipped};
+        let spec = self.robot.as_str();
+        let options = self.load_options();
+        let (robot, name, bytes) = if spec == "-" {
+            let mut text = String::new();
+            std::io::Read::read_to_string(&mut std::io::stdin().lock(), &mut text)
+                .map_err(|e| format!("{}: cannot read standard input: {e}", load::STDIN_NAME))?;
+            let robot = load::from_reader(text.as_bytes(), load::STDIN_NAME, &options);
+            (robot, load::STDIN_NAME.to_string(), Some(text.into_bytes()))
+        } else {
+            let robot = load::load(spec, &options);
+            match shipped::get(spec).filter(|_| !std::path::Path::new(spec).is_file()) {
+                Some(s) => (
+                    robot,
+                    format!("shipped robot {spec}"),
+                    Some(s.text.as_bytes().to_vec()),
+                ),
+                None => (robot, spec.to_string(), std::fs::read(spec).ok()),
+            }
+        };
+        let robot = robot.map_err(|e| e.to_string())?;
         dynamics_gen::check_robot(&robot).map_err(|e| e.to_string())?;
-        Ok(robot)
+        Ok((robot, name, bytes))
     }
 }
 

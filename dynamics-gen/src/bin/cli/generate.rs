@@ -1,14 +1,13 @@
 //! `generate` and `stats`.
 
 use super::args::{GenerateArgs, ModelArgs};
-use dynamics_gen::dynamics_model::shipped;
 use dynamics_gen::emit::provenance::portable;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
 use dynamics_gen::{Options, Provenance, Scalar};
 
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
-    let robot = args.model.load()?;
+    let (robot, source, bytes) = args.model.load_with_source()?;
     super::joints::ignored_notes(&robot, &args.model);
     let options = Options {
         name: args.name.clone(),
@@ -21,17 +20,9 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
     }
-    let spec = &args.model.robot;
-    let provenance = if !std::path::Path::new(spec).is_file() {
-        match shipped::get(spec) {
-            Some(s) => Provenance::of_bytes(format!("shipped robot {spec}"), s.text.as_bytes()),
-            None => Provenance::new(spec.as_str()),
-        }
-    } else {
-        match std::fs::read(spec) {
-            Ok(bytes) => Provenance::of_bytes(spec.as_str(), &bytes),
-            Err(_) => Provenance::new(spec.as_str()),
-        }
+    let provenance = match &bytes {
+        Some(bytes) => Provenance::of_bytes(source, bytes),
+        None => Provenance::new(source),
     };
     let provenance = provenance.command(command(args));
     let code =
