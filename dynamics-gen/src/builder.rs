@@ -152,12 +152,12 @@ impl Builder {
         if let Some(name) = &self.options.name {
             crate::options::check_struct_name(name)?;
         }
-        let (robot, source, bytes) = self.load_with_source()?;
+        let (robot, source, text) = self.load_with_source()?;
         let name = match &source {
             Source::File { given, .. } => given.clone(),
             Source::Shipped(name) => format!("shipped robot {name}"),
         };
-        let provenance = crate::Provenance::of_bytes(name, bytes.as_bytes())
+        let provenance = crate::Provenance::of_bytes(name, text.as_bytes())
             .command(format!("cargo build (build.rs: {})", self.call()));
         crate::emit::generate_file(&robot, &self.options, provenance)
     }
@@ -282,10 +282,10 @@ impl Builder {
     /// The robot, where it came from, and the text it was read from.
     fn load_with_source(&self) -> Result<(Robot, Source, String), Error> {
         let source = self.resolve();
-        let mut bytes = String::new();
+        let mut read = String::new();
         let robot = match &source {
             Source::Shipped(name) => {
-                bytes = shipped::get(name)
+                read = shipped::get(name)
                     .map(|s| s.text.to_string())
                     .unwrap_or_default();
                 load::load(name, &self.options.load)?
@@ -309,12 +309,12 @@ impl Builder {
                     })?;
                     // Named as given, so the generated file does not depend on the machine.
                     let robot = load::from_str(&text, format, given, &self.options.load)?;
-                    bytes = text;
+                    read = text;
                     robot
                 }
             }
         };
-        Ok((robot, source, bytes))
+        Ok((robot, source, read))
     }
 }
 

@@ -17,9 +17,9 @@ pub enum Error {
         /// What is wrong and the fix.
         hint: String,
     },
-    /// The nalgebra path is not a Rust path.
+    /// The nalgebra or dynamics-runtime path is not a Rust path.
     #[error(
-        "`{path}` is not a valid Rust path for nalgebra; give one like `::nalgebra` or `crate::na`"
+        "`{path}` is not a valid Rust path for a crate (nalgebra, dynamics-runtime); give one like `::nalgebra` or `crate::na`"
     )]
     InvalidPath {
         /// The path given.

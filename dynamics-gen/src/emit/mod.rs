@@ -59,11 +59,12 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         name: struct_name.clone(),
         hint: "not a Rust identifier; give a name like `Ur5`".into(),
     })?;
-    let nalgebra: TokenStream = syn::parse_str::<syn::Path>(&options.nalgebra_path)
-        .map(|p| quote!(#p))
-        .map_err(|_| Error::InvalidPath {
-            path: options.nalgebra_path.clone(),
-        })?;
+    let nalgebra = path_tokens(&options.nalgebra_path)?;
+    let runtime = options
+        .runtime_path
+        .as_deref()
+        .map(path_tokens)
+        .transpose()?;
     let dynamics = expand::expand(&robot);
     let n_usize = dynamics.dof;
     let n = proc_macro2::Literal::usize_unsuffixed(n_usize);
@@ -186,13 +187,10 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             }
         }
     };
-    let impl_block = match &options.runtime_path {
+    let impl_block = match &runtime {
         None => impl_block,
-        Some(path) => {
-            let runtime: TokenStream = syn::parse_str::<syn::Path>(path)
-                .map(|p| quote!(#p))
-                .map_err(|_| Error::InvalidPath { path: path.clone() })?;
-            let trait_impl = runtime_impl(&ident, &runtime, &nalgebra, &scalar, &n);
+        Some(runtime) => {
+            let trait_impl = runtime_impl(&ident, runtime, &nalgebra, &scalar, &n);
             quote!(#impl_block #trait_impl)
         }
     };
@@ -234,6 +232,13 @@ pub fn generate_file(
         .map_err(|e| Error::Internal(format!("generated code does not parse: {e}")))?;
     let body = prettyplease::unparse(&file);
     Ok(format!("{header}\n{body}"))
+}
+
+/// A crate path option (`::nalgebra`, `crate::rt`) as tokens, or the error naming it.
+fn path_tokens(path: &str) -> Result<TokenStream, Error> {
+    syn::parse_str::<syn::Path>(path)
+        .map(|p| quote!(#p))
+        .map_err(|_| Error::InvalidPath { path: path.into() })
 }
 
 /// `impl Dynamics<T, N, N> for Name`, forwarding to the inherent functions and constants.
@@ -306,25 +311,24 @@ fn limit_consts(robot: &Robot, scalar: Scalar, n: usize) -> TokenStream {
         None if sign < 0.0 => quote!(#ty::NEG_INFINITY),
         None => quote!(#ty::INFINITY),
     };
-    let limits = |j: &dynamics_model::Joint| j.limits;
     let position: Vec<TokenStream> = robot
         .joints
         .iter()
         .map(|j| {
-            let lo = value(limits(j).map(|l| l.lower), -1.0);
-            let hi = value(limits(j).map(|l| l.upper), 1.0);
+            let lo = value(j.limits.map(|l| l.lower), -1.0);
+            let hi = value(j.limits.map(|l| l.upper), 1.0);
             quote!([#lo, #hi])
         })
         .collect();
     let velocity: Vec<TokenStream> = robot
         .joints
         .iter()
-        .map(|j| value(limits(j).and_then(|l| l.velocity), 1.0))
+        .map(|j| value(j.limits.and_then(|l| l.velocity), 1.0))
         .collect();
     let effort: Vec<TokenStream> = robot
         .joints
         .iter()
-        .map(|j| value(limits(j).and_then(|l| l.effort), 1.0))
+        .map(|j| value(j.limits.and_then(|l| l.effort), 1.0))
         .collect();
     quote! {
         /// Position limits `[lower, upper]` per joint (rad or m), from the robot file;
