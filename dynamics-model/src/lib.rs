@@ -1,5 +1,6 @@
-//! The robot model of dynamics-gen: an open serial chain in the product-of-exponentials
-//! form of Modern Robotics (Lynch & Park, chapter 8), its loaders and its validation.
+//! The robot model of dynamics-gen: a kinematic tree (the serial chain of Modern Robotics
+//! is its special case) in the product-of-exponentials form of Modern Robotics (Lynch &
+//! Park, chapter 8), on a fixed or floating base; its loaders and its validation.
 //!
 //! # Conventions
 //!
@@ -7,8 +8,12 @@
 //! - Twists and screw axes are `(ω, v)` (angular part first); wrenches are `(m, f)`.
 //! - Frames: {0} is the space (base) frame; {i} is the frame of link i (i = 1..n), moved by
 //!   joint i; {n+1} is the end-effector (tip) frame.
-//! - `M_{i−1,i}` ([`Link::home`], and [`EndEffector::home`] for i = n+1) is the pose of {i} in
-//!   {i−1} at the home configuration q = 0.
+//! - Trees: link i hangs from `λ(i)` ([`Link::parent`]; `None` = the base), always an
+//!   earlier link, so every vector lists a joint after the joints between it and the base.
+//!   A serial chain has `λ(i) = i − 1`.
+//! - `M_{λ(i),i}` ([`Link::home`], and [`EndEffector::home`] in the frame of the link it is
+//!   attached to) is the pose of {i} in its parent's frame at the home configuration q = 0;
+//!   on a serial chain `M_{i−1,i}`, the book's `Mlist`.
 //! - `G_i` ([`Link::inertia`]) is link i's 6×6 spatial inertia expressed in {i}. The book puts
 //!   {i} at the link's centre of mass, where `G_i = [[I_b, 0], [0, m·1₃]]`; any frame is
 //!   allowed here, with the full 6×6 moved by `G_a = [Ad_{T_ba}]ᵀ G_b [Ad_{T_ba}]` (Exercise 8.3).
@@ -18,6 +23,23 @@
 //! - Gravity ([`Robot::gravity`]) is a vector in {0}, by default `(0, 0, −9.81)` m/s².
 //! - The dynamics are `τ = M(q) q̈ + c(q, q̇) + g(q) + J_b(q)ᵀ F_tip`, where `F_tip` is the
 //!   wrench the end effector applies to the environment, in {n+1}.
+//!
+//! ## Floating base
+//!
+//! With [`Base::floating`], a free 6-DoF joint connects the world frame {0} to the base,
+//! whose frame coincides with {0} at the home configuration. Then (nq = n + 7, nv = n + 6):
+//!
+//! - `q = (p, quat, θ)`: `p` the base origin in {0} (m); `quat = (x, y, z, w)`, scalar
+//!   last, the base orientation `R` (base-frame vectors into {0}); `θ` the n joint values.
+//!   Code that reads `quat` normalises it (`R` is computed from `quat / |quat|`).
+//! - `ν = (ω_b, v_b, θ̇)`: the base's body twist in the base frame, angular first
+//!   (`[ω_b] = Rᵀ Ṙ`, `v_b = Rᵀ ṗ`), then the joint rates; `ν̇` likewise.
+//! - `τ = (m_b, f_b, τ_θ)`: the wrench applied to the base in the base frame, moment first
+//!   (about the base origin), then the joint forces.
+//!
+//! Pinocchio's free flyer has the same q, and ν and τ with the linear part first:
+//! Pinocchio `v = (v_b, ω_b, θ̇)` and `τ = (f_b, m_b, τ_θ)`, so rows and columns 0..3 and 3..6
+//! swap between the two.
 //!
 //! # Where a robot comes from
 //!
@@ -36,7 +58,7 @@ pub mod validate;
 
 pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
-pub use robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
+pub use robot::{Base, EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
 pub mod load;
 pub mod shipped;
 pub mod toml_format;

@@ -8,7 +8,7 @@
 
 use crate::inertia::SpatialInertia;
 use crate::lie::{exp6, rotation, rp_to_trans, twist};
-use crate::robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot};
+use crate::robot::{Base, EndEffector, Joint, JointKind, JointLimits, Link, Robot};
 use nalgebra::{Matrix3, Matrix4, Vector3};
 
 /// A small deterministic random number generator (SplitMix64).
@@ -134,6 +134,7 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
         joints.push(joint);
         links.push(Link {
             name: format!("l{}", i + 1),
+            parent: i.checked_sub(1),
             home,
             inertia: random_inertia(&mut rng),
         });
@@ -143,10 +144,105 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
     Robot {
         name: format!("random_{seed}"),
         source: format!("dynamics_model::random::random_chain({seed})"),
+        base: Base::fixed(),
         joints,
         links,
         end_effector: EndEffector {
             name: "tip".into(),
+            parent: spec.dof.checked_sub(1),
+            home: tip,
+        },
+        gravity,
+    }
+}
+
+/// How random trees are drawn.
+#[derive(Clone, Copy, Debug)]
+pub struct TreeSpec {
+    /// Number of joints (bodies) n.
+    pub dof: usize,
+    /// Probability that a joint is prismatic.
+    pub prismatic: f64,
+    /// Probability that a body starts a new branch (hangs from a random earlier body or the
+    /// base) instead of continuing from the body before it.
+    pub branching: f64,
+    /// Whether the base floats (its inertia is drawn either way).
+    pub floating: bool,
+}
+
+/// A random kinematic tree, named `random_tree_<seed>`: bodies in depth-first order, each
+/// hanging from the one before it or, with probability `spec.branching`, from a random
+/// earlier body or the base; axes, homes and inertias drawn as in [`random_chain`]. The end
+/// effector hangs from the last body.
+pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
+    let mut rng = Rng::new(seed ^ 0x7EE5);
+    let mut joints = Vec::with_capacity(spec.dof);
+    let mut links: Vec<Link> = Vec::with_capacity(spec.dof);
+    let mut poses: Vec<Matrix4<f64>> = Vec::with_capacity(spec.dof);
+    // The bodies a new body may hang from while keeping depth-first order: the previous
+    // body and its ancestors (the open path), or the base.
+    let mut open: Vec<usize> = Vec::new();
+    for i in 0..spec.dof {
+        let parent = if i == 0 || rng.unit() >= spec.branching {
+            i.checked_sub(1)
+        } else {
+            let k = (rng.unit() * (open.len() + 1) as f64) as usize;
+            open.get(k).copied()
+        };
+        // Close the path below the chosen parent.
+        match parent {
+            Some(p) => {
+                while open.last().is_some_and(|&l| l != p) {
+                    open.pop();
+                }
+            }
+            None => open.clear(),
+        }
+        open.push(i);
+        let home = rp_to_trans(&rng.rotation(), &rng.vector(0.4));
+        let t0 = parent.map_or(Matrix4::identity(), |p| poses[p]) * home;
+        poses.push(t0);
+        let kind = if rng.unit() < spec.prismatic {
+            JointKind::Prismatic
+        } else {
+            JointKind::Revolute
+        };
+        let dir = rng.unit_vector();
+        let point = t0.fixed_view::<3, 1>(0, 3).into_owned() + rng.vector(0.1);
+        let screw = match kind {
+            JointKind::Revolute => twist(&dir, &(-dir.cross(&point))),
+            JointKind::Prismatic => twist(&Vector3::zeros(), &dir),
+        };
+        let mut joint = Joint::new(format!("j{}", i + 1), kind, screw);
+        joint.limits = Some(JointLimits {
+            lower: -3.0,
+            upper: 3.0,
+            velocity: None,
+            effort: None,
+        });
+        joints.push(joint);
+        links.push(Link {
+            name: format!("l{}", i + 1),
+            parent,
+            home,
+            inertia: random_inertia(&mut rng),
+        });
+    }
+    let tip = rp_to_trans(&rng.rotation(), &rng.vector(0.2));
+    let gravity = rng.vector(1.0).normalize() * 9.81;
+    Robot {
+        name: format!("random_tree_{seed}"),
+        source: format!("dynamics_model::random::random_tree({seed})"),
+        base: Base {
+            name: "base".into(),
+            inertia: random_inertia(&mut rng),
+            floating: spec.floating,
+        },
+        joints,
+        links,
+        end_effector: EndEffector {
+            name: "tip".into(),
+            parent: spec.dof.checked_sub(1),
             home: tip,
         },
         gravity,
@@ -156,6 +252,24 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn random_trees_are_valid_reproducible_and_branched() {
+        let mut branched = 0;
+        for seed in 0..50 {
+            let spec = TreeSpec {
+                dof: 1 + (seed as usize % 20),
+                prismatic: 0.3,
+                branching: 0.4,
+                floating: seed % 2 == 0,
+            };
+            let r = random_tree(seed, spec);
+            assert!(r.validate().is_ok(), "seed {seed}: {:?}", r.validate());
+            assert_eq!(r, random_tree(seed, spec));
+            branched += usize::from(!r.is_serial());
+        }
+        assert!(branched > 30, "{branched} of 50 trees branch");
+    }
 
     #[test]
     fn random_chains_are_valid_and_reproducible() {

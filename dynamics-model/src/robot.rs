@@ -1,4 +1,5 @@
-//! The robot: an open serial chain in the product-of-exponentials form of Modern Robotics.
+//! The robot: a kinematic tree (the serial chain is the special case) in the
+//! product-of-exponentials form of Modern Robotics, on a fixed or a floating base.
 
 use crate::error::ModelError;
 use crate::inertia::SpatialInertia;
@@ -82,7 +83,11 @@ impl Joint {
 pub struct Link {
     /// The link's name.
     pub name: String,
-    /// `M_{i−1,i}`: the pose of frame {i} in frame {i−1} at the home configuration.
+    /// `λ(i)`: the link this one hangs from (0-based, always before i), or `None` for the
+    /// base {0}. A serial chain has `λ(i) = i − 1`.
+    pub parent: Option<usize>,
+    /// `M_{λ(i),i}`: the pose of frame {i} in its parent's frame at the home configuration
+    /// (`M_{i−1,i}` on a serial chain).
     pub home: Matrix4<f64>,
     /// `G_i`: the 6×6 spatial inertia of the link, expressed in frame {i}.
     pub inertia: SpatialInertia,
@@ -93,18 +98,49 @@ pub struct Link {
 pub struct EndEffector {
     /// The frame's name (the URDF tip link, or the TOML `end_effector.name`).
     pub name: String,
-    /// `M_{n,n+1}`: its pose in the last link's frame {n}.
+    /// The link it is attached to (0-based), or `None` for the base; on a serial chain the
+    /// last link.
+    pub parent: Option<usize>,
+    /// Its pose in that link's frame (`M_{n,n+1}` on a serial chain).
     pub home: Matrix4<f64>,
 }
 
-/// An open serial chain of n movable joints (see the crate docs for the conventions).
+/// The base: the body every root link hangs from, whose frame is {0} at the home
+/// configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Base {
+    /// The base link's name (the URDF root link; `base` otherwise).
+    pub name: String,
+    /// Its spatial inertia in {0}; it moves (and counts) only when the base floats.
+    pub inertia: SpatialInertia,
+    /// `true`: a free 6-DoF joint connects the world to the base (see the crate docs for the
+    /// conventions of q, ν and τ); `false`: the base is the fixed world frame {0}.
+    pub floating: bool,
+}
+
+impl Base {
+    /// A fixed, massless base called `base`.
+    pub fn fixed() -> Self {
+        Self {
+            name: "base".into(),
+            inertia: SpatialInertia::zero(),
+            floating: false,
+        }
+    }
+}
+
+/// A kinematic tree of n movable joints on a fixed or floating base (see the crate docs for
+/// the conventions).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robot {
     /// The robot's name.
     pub name: String,
     /// Where the description came from (a path, a shipped name, or `Modern Robotics lists`).
     pub source: String,
-    /// The n movable joints, root to tip.
+    /// The base, fixed or floating.
+    pub base: Base,
+    /// The n movable joints in depth-first order from the base (every joint after its
+    /// parent; a serial chain root to tip).
     pub joints: Vec<Joint>,
     /// The n moving links; link i is moved by joint i.
     pub links: Vec<Link>,
@@ -166,6 +202,7 @@ impl Robot {
         let links = (0..n)
             .map(|i| Link {
                 name: format!("link{}", i + 1),
+                parent: i.checked_sub(1),
                 home: m_list[i],
                 inertia: SpatialInertia(g_list[i]),
             })
@@ -173,22 +210,63 @@ impl Robot {
         Ok(Self {
             name: "robot".into(),
             source: "Modern Robotics lists".into(),
+            base: Base::fixed(),
             joints,
             links,
             end_effector: EndEffector {
                 name: "end_effector".into(),
+                parent: n.checked_sub(1),
                 home: m_list[n],
             },
             gravity,
         })
     }
 
-    /// n, the number of movable joints.
+    /// n, the number of movable joints (the floating base not counted).
     pub fn dof(&self) -> usize {
         self.joints.len()
     }
 
-    /// The book's `Mlist`: `M_{i−1,i}` for i = 1..n+1.
+    /// The length of the configuration vector q: n, or n + 7 on a floating base
+    /// (position, unit quaternion, joint values).
+    pub fn nq(&self) -> usize {
+        self.dof() + if self.base.floating { 7 } else { 0 }
+    }
+
+    /// The length of the velocity vector ν (and of ν̇ and τ): n, or n + 6 on a floating base
+    /// (the base's body twist, then the joint rates).
+    pub fn nv(&self) -> usize {
+        self.dof() + if self.base.floating { 6 } else { 0 }
+    }
+
+    /// `λ(i)` for every link: its parent link, `None` for the base.
+    pub fn parents(&self) -> Vec<Option<usize>> {
+        self.links.iter().map(|l| l.parent).collect()
+    }
+
+    /// Whether the links form one serial chain (`λ(i) = i − 1` for every i).
+    pub fn is_serial(&self) -> bool {
+        self.links
+            .iter()
+            .enumerate()
+            .all(|(i, l)| l.parent == i.checked_sub(1))
+    }
+
+    /// The links on the path from the base to link `i`, base side first, `i` last (the
+    /// joints that move link i).
+    pub fn path_to(&self, i: usize) -> Vec<usize> {
+        let mut path = vec![i];
+        let mut k = i;
+        while let Some(p) = self.links[k].parent {
+            path.push(p);
+            k = p;
+        }
+        path.reverse();
+        path
+    }
+
+    /// The book's `Mlist` on a serial chain: `M_{λ(i),i}` for i = 1..n, then the end
+    /// effector's home.
     pub fn m_list(&self) -> Vec<Matrix4<f64>> {
         let mut v: Vec<_> = self.links.iter().map(|l| l.home).collect();
         v.push(self.end_effector.home);
@@ -205,16 +283,19 @@ impl Robot {
         self.joints.iter().map(|j| j.screw).collect()
     }
 
-    /// `M_{0i}` = `M_{01} M_{12} ⋯ M_{i−1,i}` for i = 0..n+1 (i = 0 is the identity,
-    /// i = n+1 the end effector's home pose `M`).
+    /// `M_{0i}`, the home pose of every frame in {0}: index 0 the base (identity), 1..=n the
+    /// links (`M_{0,λ(i)} M_{λ(i),i}`), n+1 the end effector.
     pub fn home_poses(&self) -> Vec<Matrix4<f64>> {
-        let mut out = Vec::with_capacity(self.dof() + 2);
-        let mut t = Matrix4::identity();
-        out.push(t);
-        for m in self.m_list() {
-            t *= m;
-            out.push(t);
+        let n = self.dof();
+        let mut out: Vec<Matrix4<f64>> = Vec::with_capacity(n + 2);
+        out.push(Matrix4::identity());
+        for l in &self.links {
+            let parent = l.parent.map_or(Matrix4::identity(), |p| out[p + 1]);
+            out.push(parent * l.home);
         }
+        let ee = &self.end_effector;
+        let parent = ee.parent.map_or(Matrix4::identity(), |p| out[p + 1]);
+        out.push(parent * ee.home);
         out
     }
 

@@ -97,6 +97,19 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             index: Some(i),
             name: l.name.clone(),
         };
+        if let Some(p) = l.parent {
+            if p >= i {
+                errors.push(Invalid::new(
+                    subject.clone(),
+                    "parent",
+                    format!(
+                        "hangs from link {}, which is not before it (links are in depth-first order: every link after its parent)",
+                        p + 1
+                    ),
+                    "list every link after the link it hangs from",
+                ));
+            }
+        }
         if let Some(e) = check_home(subject.clone(), "home", &l.home) {
             errors.push(e);
         }
@@ -104,6 +117,31 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
     }
     if let Some(e) = check_home(Subject::EndEffector, "home", &robot.end_effector.home) {
         errors.push(e);
+    }
+    if let Some(p) = robot.end_effector.parent {
+        if p >= robot.links.len() {
+            errors.push(Invalid::new(
+                Subject::EndEffector,
+                "parent",
+                format!(
+                    "is attached to link {}, but the robot has {} links",
+                    p + 1,
+                    robot.links.len()
+                ),
+                "attach the end effector to one of the robot's links",
+            ));
+        }
+    }
+    let base = Subject::Link {
+        index: None,
+        name: robot.base.name.clone(),
+    };
+    if robot.base.floating {
+        errors.extend(check_spatial_inertia(
+            base,
+            "inertia",
+            &robot.base.inertia.0,
+        ));
     }
     errors
 }

@@ -10,7 +10,9 @@ use super::schema::{JointSpec, KindSpec, RobotFile};
 use crate::error::{Invalid, Subject};
 use crate::inertia::SpatialInertia;
 use crate::lie::twist;
-use crate::robot::{EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
+use crate::robot::{
+    Base, EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
+};
 use nalgebra::{Matrix4, Vector3, Vector6};
 use std::collections::HashMap;
 
@@ -81,6 +83,7 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
         if let Some(inertia) = link_inertia(&link_subject, j, &mut errors) {
             links.push(Link {
                 name: j.link.name.clone(),
+                parent: i.checked_sub(1),
                 home,
                 inertia,
             });
@@ -89,10 +92,12 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
     let end_effector = match &spec.end_effector {
         None => EndEffector {
             name: "end_effector".into(),
+            parent: spec.joints.len().checked_sub(1),
             home: Matrix4::identity(),
         },
         Some(ee) => EndEffector {
             name: ee.name.clone().unwrap_or_else(|| "end_effector".into()),
+            parent: spec.joints.len().checked_sub(1),
             home: match &ee.home {
                 None => Matrix4::identity(),
                 Some(v) => pose(&Subject::EndEffector, "home", v).unwrap_or_else(|e| {
@@ -108,6 +113,7 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
     Ok(Robot {
         name: spec.name,
         source: file.to_string(),
+        base: Base::fixed(),
         joints,
         links,
         end_effector,

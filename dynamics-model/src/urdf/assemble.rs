@@ -18,7 +18,7 @@ use super::tree::Tree;
 use crate::error::{Invalid, Subject};
 use crate::inertia::SpatialInertia;
 use crate::lie::{adjoint, rotation, twist};
-use crate::robot::{EndEffector, Joint, JointKind, Link, Robot, DEFAULT_GRAVITY};
+use crate::robot::{Base, EndEffector, Joint, JointKind, Link, Robot, DEFAULT_GRAVITY};
 use nalgebra::{Matrix4, Vector3};
 
 /// Builds the robot from the checked parts. `chain` is the list of movable joints, root to
@@ -145,6 +145,7 @@ pub fn robot(
         out_joints.push(joint);
         out_links.push(Link {
             name: tree.link_names[tree.ends[j].1].clone(),
+            parent: i.checked_sub(1),
             home: home[i],
             inertia: inertia[i],
         });
@@ -156,10 +157,15 @@ pub fn robot(
             urdf.name.clone()
         },
         source: String::new(),
+        base: Base {
+            name: tree.link_names[tree.root].clone(),
+            ..Base::fixed()
+        },
         joints: out_joints,
         links: out_links,
         end_effector: EndEffector {
             name: tree.link_names[tip_link].clone(),
+            parent: n.checked_sub(1),
             home: pose[tip_link],
         },
         gravity: Vector3::from(DEFAULT_GRAVITY),
