@@ -37,6 +37,9 @@ pub struct LoadOptions {
     pub lock: Vec<(String, f64)>,
     /// Replaces the description's gravity vector (in {0}, m/s²).
     pub gravity: Option<Vector3<f64>>,
+    /// Puts a free 6-DoF joint between the world and the base ([`crate::Base::floating`]);
+    /// a description may also ask for one itself (a URDF root joint of type `floating`).
+    pub floating_base: bool,
 }
 
 /// The name standard input has in errors.
@@ -147,6 +150,9 @@ fn parse(
     };
     if let Some(g) = options.gravity {
         robot.gravity = g;
+    }
+    if options.floating_base {
+        robot.base.floating = true;
     }
     Ok(robot)
 }

@@ -23,6 +23,7 @@ fn compare(urdf: &str, json: &str) -> (f64, f64) {
                 .to_string(),
         ),
         lock: Vec::new(),
+        floating_base: false,
         gravity: None,
     };
     let robot = load_text(&text, urdf, &options).expect("loads");

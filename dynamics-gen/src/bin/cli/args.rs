@@ -54,6 +54,11 @@ pub struct ModelArgs {
     /// `robot!` (`PI/2`, `-FRAC_PI_4`, `0.5*PI`).
     #[arg(long, value_name = "JOINT=VALUE[,JOINT=VALUE...]", value_parser = parse_lock, value_delimiter = ',', allow_hyphen_values = true)]
     pub lock: Vec<(String, f64)>,
+    /// Put a free 6-DoF joint between the world and the base: q = (p, quat (x, y, z, w), θ),
+    /// ν = (ω_b, v_b, θ̇) with the base twist in the base frame, τ = (m_b, f_b, τ_θ). Automatic
+    /// for a URDF whose root joint is `floating`.
+    #[arg(long)]
+    pub floating_base: bool,
 }
 
 /// Arguments of `eval`.
@@ -104,6 +109,7 @@ impl ModelArgs {
             tip: self.tip.clone(),
             lock: self.lock.clone(),
             gravity: self.gravity.map(Into::into),
+            floating_base: self.floating_base,
         }
     }
 
