@@ -32,10 +32,24 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
             robot: robot.name.clone(),
         });
     }
-    if let Some(j) = singular_joint(robot) {
-        let moved: Vec<String> = robot.links[j..]
-            .iter()
-            .map(|l| format!("`{}`", l.name))
+    let ov = robot.nv() - robot.dof();
+    if let Some(k) = singular_joint(robot) {
+        let Some(j) = k.checked_sub(ov) else {
+            let e = Invalid::new(
+                Subject::Link {
+                    index: None,
+                    name: robot.base.name.clone(),
+                },
+                "inertia",
+                "the floating base's block of the mass matrix (the composite inertia of the whole robot) is singular, so forward dynamics would divide by zero",
+                "give the base link, or the links on it, mass and rotational inertia (URDF <inertial>, TOML `[base]` mass and inertia), or fix the base",
+            );
+            return Err(ModelError::invalid(e).in_file(&robot.source).into());
+        };
+        // Link j and every link below it.
+        let moved: Vec<String> = (j..robot.dof())
+            .filter(|&l| robot.path_to(l).contains(&j))
+            .map(|l| format!("`{}`", robot.links[l].name))
             .collect();
         let e = Invalid::new(
             Subject::Joint {
@@ -54,14 +68,16 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
     Ok(())
 }
 
-/// The first joint whose mass-matrix pivot vanishes at every sample, if any.
+/// The first dof (base dofs first) whose mass-matrix pivot vanishes at every sample, if any.
 fn singular_joint(robot: &Robot) -> Option<usize> {
     let n = robot.dof();
+    let oq = robot.nq() - n;
     let frames = frames::joint_frames(robot);
     let mut g = ExprGraph::new();
-    let q: Vec<_> = (0..n).map(|i| g.input(expand::input(Q, i))).collect();
+    let q: Vec<_> = (0..n).map(|i| g.input(expand::input(Q, oq + i))).collect();
     let motions = expand::joint_motions(&mut g, &frames, &q);
-    let m = expand::crba::crba(&mut g, &motions);
+    let m = expand::crba::crba(&mut g, &motions, frames.base.as_ref());
+    let nv = robot.nv();
     let mut first_singular = vec![None; SAMPLES];
     let mut rng = crate::expr::zeros::SplitMix(0x9e37_79b9_7f4a_7c15);
     for found in &mut first_singular {
@@ -73,8 +89,9 @@ fn singular_joint(robot: &Robot) -> Option<usize> {
                 JointKind::Prismatic => rng.uniform(-0.5, 0.5),
             })
             .collect();
-        let mv = g.eval(&m, &|x| values[x.index as usize]);
-        *found = first_zero_pivot(&mv, n);
+        // M does not depend on the base's pose: its q entries are never read.
+        let mv = g.eval(&m, &|x| values[x.index as usize - oq]);
+        *found = first_zero_pivot(&mv, nv);
     }
     // Singular everywhere: the same joint at every sample.
     let j = first_singular[0]?;

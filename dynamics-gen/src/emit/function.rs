@@ -21,6 +21,8 @@ pub struct Arg {
     pub name: &'static str,
     /// The graph input group it fills.
     pub group: u8,
+    /// The vector's length (nq for `q`, nv for the others).
+    pub len: usize,
 }
 
 /// Everything the body writer needs.
@@ -41,8 +43,6 @@ pub struct FunctionBody<'a> {
     pub no_std: bool,
     /// The nalgebra path tokens.
     pub nalgebra: &'a TokenStream,
-    /// The dimension n (for unpacking inputs).
-    pub dof: usize,
 }
 
 #[derive(Clone)]
@@ -64,7 +64,7 @@ impl FunctionBody<'_> {
 
         // Inputs.
         for arg in self.args {
-            let names: Vec<TokenStream> = (0..self.dof)
+            let names: Vec<TokenStream> = (0..arg.len)
                 .map(|i| {
                     let input = Input::new(arg.group, i as u16);
                     match g.find_input(input) {

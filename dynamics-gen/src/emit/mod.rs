@@ -66,42 +66,48 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         .map(path_tokens)
         .transpose()?;
     let dynamics = expand::expand(&robot);
-    let n_usize = dynamics.dof;
+    let (n_usize, nq_usize, nv_usize) = (dynamics.dof, dynamics.nq, dynamics.nv);
     let n = proc_macro2::Literal::usize_unsuffixed(n_usize);
+    let nq = proc_macro2::Literal::usize_unsuffixed(nq_usize);
+    let nv = proc_macro2::Literal::usize_unsuffixed(nv_usize);
     let scalar = Ident::new(options.scalar.as_str(), Span::call_site());
-    let vec_ty = quote!(#nalgebra::SVector<#scalar, #n>);
-    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #n, #n>);
+    let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
+    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
     let body = |outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
         FunctionBody {
             graph: &dynamics.graph,
             args,
             outputs,
-            rows: n_usize,
+            rows: nv_usize,
             cols,
             scalar: options.scalar,
             no_std: options.no_std,
             nalgebra: &nalgebra,
-            dof: n_usize,
         }
         .tokens()
     };
     let q = Arg {
         name: "q",
         group: Q,
+        len: nq_usize,
     };
     let qd = Arg {
         name: "qd",
         group: QD,
+        len: nv_usize,
     };
     let qdd = Arg {
         name: "qdd",
         group: QDD,
+        len: nv_usize,
     };
     let tau = Arg {
         name: "tau",
         group: TAU,
+        len: nv_usize,
     };
-    let mass_matrix = body(&dynamics.mass_matrix, std::slice::from_ref(&q), n_usize);
+    let mass_matrix = body(&dynamics.mass_matrix, std::slice::from_ref(&q), nv_usize);
     let coriolis = body(&dynamics.coriolis, &[q.clone(), qd.clone()], 1);
     let gravity = body(&dynamics.gravity, std::slice::from_ref(&q), 1);
     let inverse = body(
@@ -126,8 +132,13 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         #allow
         #[rustfmt::skip]
         impl #ident {
-            /// The number of joints n: the length of every joint vector.
+            /// The number of joints n (the floating base not counted).
             pub const DOF: usize = #n;
+            /// The length of the configuration `q`: n, or n + 7 with a floating base.
+            pub const NQ: usize = #nq;
+            /// The length of the velocity `qd`, the acceleration `qdd` and the forces `tau`: n,
+            /// or n + 6 with a floating base.
+            pub const NV: usize = #nv;
             /// The joint names, in the order of every vector and matrix index.
             pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
             #limits
@@ -138,7 +149,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = #units]
             #[inline]
             #[must_use]
-            pub fn mass_matrix(&self, q: &#vec_ty) -> #mat_ty {
+            pub fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
                 #mass_matrix
             }
 
@@ -148,7 +159,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = #units]
             #[inline]
             #[must_use]
-            pub fn coriolis(&self, q: &#vec_ty, qd: &#vec_ty) -> #vec_ty {
+            pub fn coriolis(&self, q: &#q_ty, qd: &#vec_ty) -> #vec_ty {
                 #coriolis
             }
 
@@ -159,7 +170,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = #units]
             #[inline]
             #[must_use]
-            pub fn gravity(&self, q: &#vec_ty) -> #vec_ty {
+            pub fn gravity(&self, q: &#q_ty) -> #vec_ty {
                 #gravity
             }
 
@@ -170,7 +181,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = #units]
             #[inline]
             #[must_use]
-            pub fn inverse_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
+            pub fn inverse_dynamics(&self, q: &#q_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
                 #inverse
             }
 
@@ -182,7 +193,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = #units]
             #[inline]
             #[must_use]
-            pub fn forward_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
+            pub fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
                 #forward
             }
         }
@@ -190,7 +201,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let impl_block = match &runtime {
         None => impl_block,
         Some(runtime) => {
-            let trait_impl = runtime_impl(&ident, runtime, &nalgebra, &scalar, &n);
+            let trait_impl = runtime_impl(&ident, runtime, &nalgebra, &scalar, (&nq, &nv));
             quote!(#impl_block #trait_impl)
         }
     };
@@ -241,41 +252,42 @@ fn path_tokens(path: &str) -> Result<TokenStream, Error> {
         .map_err(|_| Error::InvalidPath { path: path.into() })
 }
 
-/// `impl Dynamics<T, N, N> for Name`, forwarding to the inherent functions and constants.
+/// `impl Dynamics<T, NQ, NV> for Name`, forwarding to the inherent functions and constants.
 fn runtime_impl(
     ident: &Ident,
     runtime: &TokenStream,
     nalgebra: &TokenStream,
     scalar: &Ident,
-    n: &proc_macro2::Literal,
+    (nq, nv): (&proc_macro2::Literal, &proc_macro2::Literal),
 ) -> TokenStream {
-    let vec_ty = quote!(#nalgebra::SVector<#scalar, #n>);
-    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #n, #n>);
+    let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
+    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
     quote! {
         #[rustfmt::skip]
-        impl #runtime::Dynamics<#scalar, #n, #n> for #ident {
+        impl #runtime::Dynamics<#scalar, #nq, #nv> for #ident {
             const JOINT_NAMES: &'static [&'static str] = &Self::JOINT_NAMES;
             const POSITION_LIMITS: &'static [[#scalar; 2]] = &Self::POSITION_LIMITS;
             const VELOCITY_LIMITS: &'static [#scalar] = &Self::VELOCITY_LIMITS;
             const EFFORT_LIMITS: &'static [#scalar] = &Self::EFFORT_LIMITS;
             #[inline]
-            fn mass_matrix(&self, q: &#vec_ty) -> #mat_ty {
+            fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
                 #ident::mass_matrix(self, q)
             }
             #[inline]
-            fn coriolis(&self, q: &#vec_ty, qd: &#vec_ty) -> #vec_ty {
+            fn coriolis(&self, q: &#q_ty, qd: &#vec_ty) -> #vec_ty {
                 #ident::coriolis(self, q, qd)
             }
             #[inline]
-            fn gravity(&self, q: &#vec_ty) -> #vec_ty {
+            fn gravity(&self, q: &#q_ty) -> #vec_ty {
                 #ident::gravity(self, q)
             }
             #[inline]
-            fn inverse_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
+            fn inverse_dynamics(&self, q: &#q_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
                 #ident::inverse_dynamics(self, q, qd, qdd)
             }
             #[inline]
-            fn forward_dynamics(&self, q: &#vec_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
+            fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
                 #ident::forward_dynamics(self, q, qd, tau)
             }
         }

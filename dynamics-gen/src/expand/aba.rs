@@ -15,7 +15,10 @@
 //! ```
 //!
 //! with `V_0 = 0` and `a_0 = (0, −g)`: gravity enters as an upward acceleration of the base,
-//! as in [`super::rnea`]. The articulated inertias `I^A_i` are general symmetric 6×6
+//! as in [`super::rnea`]. On a tree `i − 1` reads `λ(i)`: pass 2 adds each articulated
+//! inertia and bias force into the parent's. A floating base is body 0 with its own rigid
+//! inertia and bias force; after pass 2 its acceleration (gravity offset included) solves
+//! `I^A_0 a_0 = τ_0 − p^A_0` (an unrolled 6×6 LDLᵀ), and `ν̇_0 = a_0 + (0, g_0)`. The articulated inertias `I^A_i` are general symmetric 6×6
 //! matrices ([`SymInertia`]), moved to the parent in two stages (the joint's own motion,
 //! then the constant `C_i`) so that the zeros of the constants fold away.
 //!
@@ -29,7 +32,8 @@
 //! The shifts of the articulated inertias ([`ShiftForm`]) and the bias wrenches
 //! ([`LinkForce`]) can each be written out in equal forms; the caller picks the cheapest.
 
-use super::rnea::LinkForce;
+use super::frames::BodyInertia;
+use super::rnea::{BaseMotion, LinkForce};
 use super::spatial::{Inertia, JointMotion, ShiftForm, Spatial, SymInertia, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
@@ -68,26 +72,31 @@ fn add(g: &mut ExprGraph, x: &Spatial, y: &Spatial) -> Spatial {
 /// `θ̈ = M(θ)⁻¹ (τ − c(θ, θ̇) − g(θ))` for the symbolic `θ̇`, `τ` and gravity `gravity` in {0};
 /// the articulated inertias are shifted as `form` says, and the bias wrenches
 /// `−[ad_{V_i}]ᵀ G_i V_i` written out as `bias` says.
+#[allow(clippy::too_many_arguments)]
 pub fn aba(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
+    base: &BaseMotion,
+    base_inertia: Option<&BodyInertia>,
     qd: &[ExprId],
     tau: &[ExprId],
-    gravity: [f64; 3],
     form: ShiftForm,
     bias: LinkForce,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let zero3 = g.zero3();
-    // Pass 1: velocities, velocity-product accelerations c_i, rigid inertias and bias forces.
-    let mut v = Spatial {
-        ang: zero3,
-        lin: zero3,
+    // With a floating base, τ holds the base wrench first.
+    let (tau_base, tau) = match base_inertia {
+        Some(_) => tau.split_at(6),
+        None => tau.split_at(0),
     };
+    // Pass 1: velocities, velocity-product accelerations c_i, rigid inertias and bias forces.
+    let mut vs: Vec<Spatial> = Vec::with_capacity(n);
     let mut c = Vec::with_capacity(n);
     let mut ia = Vec::with_capacity(n);
     let mut pa = Vec::with_capacity(n);
     for (i, jm) in joints.iter().enumerate() {
+        let v = jm.frame.parent.map_or(base.v, |p| vs[p]);
         let mut vi = jm.motion_to_child(g, v);
         // [ad_V] S θ̇: (ω × e_z, v × e_z) θ̇ (revolute) or (0, ω × e_z) θ̇ (prismatic); the
         // joint's own S θ̇ drops out of the cross product, so V before adding it serves.
@@ -106,41 +115,19 @@ pub fn aba(
             },
         };
         let s = axis(jm.frame.kind);
-        let vs = g.add(get(&vi, s), qd[i]);
-        set(&mut vi, s, vs);
+        let v_s = g.add(get(&vi, s), qd[i]);
+        set(&mut vi, s, v_s);
         let gi = Inertia::constant(g, &jm.frame.inertia);
-        pa.push(match bias {
-            LinkForce::Spatial => {
-                // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
-                let p = gi.apply(g, &vi);
-                let wk = g.cross(vi.ang, p.ang);
-                let vl = g.cross(vi.lin, p.lin);
-                let wl = g.cross(vi.ang, p.lin);
-                Spatial {
-                    ang: g.add3(wk, vl),
-                    lin: wl,
-                }
-            }
-            LinkForce::Classical => {
-                // The same through the classical acceleration a = ω × v of the origin (V̇ = 0):
-                // (ω × I ω + h × a, m a + ω × (ω × h)).
-                let a = g.cross(vi.ang, vi.lin);
-                let iw = gi.rotational(g, vi.ang);
-                let w_iw = g.cross(vi.ang, iw);
-                let hxa = g.cross(gi.h, a);
-                let ma = g.scale3(gi.m, a);
-                let wxh = g.cross(vi.ang, gi.h);
-                let wwh = g.cross(vi.ang, wxh);
-                Spatial {
-                    ang: g.add3(w_iw, hxa),
-                    lin: g.add3(ma, wwh),
-                }
-            }
-        });
+        pa.push(bias_force(g, &gi, &vi, bias));
         ia.push(SymInertia::rigid(g, &gi));
         c.push(ci);
-        v = vi;
+        vs.push(vi);
     }
+    // The floating base: its rigid inertia and bias force start its articulated ones.
+    let mut base_art = base_inertia.map(|b| {
+        let gb = Inertia::constant(g, b);
+        (SymInertia::rigid(g, &gb), bias_force(g, &gb, &base.v, bias))
+    });
     // Pass 2: articulated inertias and bias forces, tip to base.
     let zero = g.zero();
     let one = g.one();
@@ -153,8 +140,9 @@ pub fn aba(
         d_inv[i] = g.div(one, col[s]);
         u[i] = g.sub(tau[i], get(&pa[i], s));
         u_col[i] = col;
-        if i == 0 {
-            break;
+        let parent = joints[i].frame.parent;
+        if parent.is_none() && base_art.is_none() {
+            continue; // a fixed base takes no articulated inertia
         }
         // W = U D⁻¹ (W_s = 1 exactly, and unused: row and column s of I^a vanish).
         let w: [ExprId; 6] =
@@ -180,17 +168,41 @@ pub fn aba(
             set(&mut pa_small, j, value);
         }
         let moved = joints[i].sym_inertia_to_parent(g, &ia_small, form);
-        ia[i - 1] = SymInertia::add(g, &ia[i - 1], &moved);
         let fp = joints[i].force_to_parent(g, pa_small);
-        pa[i - 1] = add(g, &pa[i - 1], &fp);
+        let (ia_p, pa_p) = match (parent, &mut base_art) {
+            (Some(p), _) => (&mut ia[p], &mut pa[p]),
+            (None, Some((ib, pb))) => (ib, pb),
+            (None, None) => continue,
+        };
+        *ia_p = SymInertia::add(g, ia_p, &moved);
+        *pa_p = add(g, pa_p, &fp);
     }
-    // Pass 3: accelerations, base to tip.
-    let mut a = Spatial {
-        ang: zero3,
-        lin: g.const3([-gravity[0], -gravity[1], -gravity[2]]),
+    // The base's acceleration: given (fixed base), or from I^A_0 a_0 = τ_0 − p^A_0.
+    let (a0, base_qdd) = match &base_art {
+        None => (base.vd, Vec::new()),
+        Some((ib, pb)) => {
+            let m: Vec<ExprId> = (0..36).map(|k| ib.entry(k / 6, k % 6)).collect();
+            let rhs: Vec<ExprId> = (0..6).map(|k| g.sub(tau_base[k], get(pb, k))).collect();
+            let a0 = super::ldlt::ldlt_solve(g, &m, &rhs);
+            let a0 = Spatial {
+                ang: [a0[0], a0[1], a0[2]],
+                lin: [a0[3], a0[4], a0[5]],
+            };
+            // ν̇_0 = a_0 − (V̇_0 − ν̇_0): remove the gravity offset folded into base.vd.
+            let out: Vec<ExprId> = (0..6)
+                .map(|k| {
+                    let offset = get(&base.vd, k);
+                    g.sub(get(&a0, k), offset)
+                })
+                .collect();
+            (a0, out)
+        }
     };
+    // Pass 3: accelerations, base to tip.
+    let mut accs: Vec<Spatial> = Vec::with_capacity(n);
     let mut qdd = vec![zero; n];
     for (i, jm) in joints.iter().enumerate() {
+        let a = jm.frame.parent.map_or(a0, |p| accs[p]);
         let moved = jm.motion_to_child(g, a);
         let ai = add(g, &moved, &c[i]);
         let s = axis(jm.frame.kind);
@@ -203,8 +215,43 @@ pub fn aba(
         // a_{i,s} = a'_{i,s} + θ̈_i.
         let a_s = g.mul(d_inv[i], num);
         qdd[i] = g.sub(a_s, get(&ai, s));
-        a = ai;
+        let mut a = ai;
         set(&mut a, s, a_s);
+        accs.push(a);
     }
-    qdd
+    let mut out = base_qdd;
+    out.extend(qdd);
+    out
+}
+
+/// The bias wrench `−[ad_V]ᵀ G V` of a body with inertia `gi` and twist `v`.
+fn bias_force(g: &mut ExprGraph, gi: &Inertia, vi: &Spatial, bias: LinkForce) -> Spatial {
+    match bias {
+        LinkForce::Spatial => {
+            // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
+            let p = gi.apply(g, vi);
+            let wk = g.cross(vi.ang, p.ang);
+            let vl = g.cross(vi.lin, p.lin);
+            let wl = g.cross(vi.ang, p.lin);
+            Spatial {
+                ang: g.add3(wk, vl),
+                lin: wl,
+            }
+        }
+        LinkForce::Classical => {
+            // The same through the classical acceleration a = ω × v of the origin (V̇ = 0):
+            // (ω × I ω + h × a, m a + ω × (ω × h)).
+            let a = g.cross(vi.ang, vi.lin);
+            let iw = gi.rotational(g, vi.ang);
+            let w_iw = g.cross(vi.ang, iw);
+            let hxa = g.cross(gi.h, a);
+            let ma = g.scale3(gi.m, a);
+            let wxh = g.cross(vi.ang, gi.h);
+            let wwh = g.cross(vi.ang, wxh);
+            Spatial {
+                ang: g.add3(w_iw, hxa),
+                lin: g.add3(ma, wwh),
+            }
+        }
+    }
 }

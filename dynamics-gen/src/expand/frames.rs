@@ -80,12 +80,15 @@ impl BodyInertia {
     }
 }
 
-/// Joint i of the chain, expressed in joint frames.
+/// Joint i of the tree, expressed in joint frames.
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointFrame {
     /// Revolute (about z of {J_i}) or prismatic (along z).
     pub kind: JointKind,
-    /// `R_i`: rotation of `C_i`, the pose of {J_{i−1}} in {J_i} at θ_i = 0 (row-major).
+    /// `λ(i)`: the joint whose link this one's hangs from (`None`: the base).
+    pub parent: Option<usize>,
+    /// `R_i`: rotation of `C_i`, the pose of {J_λ(i)} ({0} for a root joint) in {J_i} at
+    /// θ_i = 0 (row-major).
     pub r: [[f64; 3]; 3],
     /// `p_i`: translation of `C_i`.
     pub p: [f64; 3],
@@ -96,11 +99,13 @@ pub struct JointFrame {
     pub offset: f64,
 }
 
-/// The whole chain in joint frames, and gravity in {0}.
+/// The whole tree in joint frames, the floating base's inertia, and gravity in {0}.
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointFrames {
-    /// The joints, root to tip.
+    /// The joints, every one after its parent.
     pub joints: Vec<JointFrame>,
+    /// A floating base's inertia in {0} (the base frame); `None` for a fixed base.
+    pub base: Option<BodyInertia>,
     /// Gravity in {0} (m/s²).
     pub gravity: [f64; 3],
 }
@@ -167,64 +172,83 @@ fn perpendicular(z: &Vector3<f64>, hint: &Vector3<f64>) -> Vector3<f64> {
     (e - z * z[k]).normalize()
 }
 
-/// Home poses `T_{0,J_i}` of modified-DH joint frames (Craig's convention): `z_i` along
-/// axis i, `x_i` along the common normal from axis i to axis i+1, origin where that normal
-/// leaves axis i (for parallel axes: where the previous normal landed, so `d_i = 0`).
-fn dh_frames(lines: &[AxisLine]) -> Vec<Matrix4<f64>> {
+/// Home poses `T_{0,J_i}` of modified-DH joint frames (Craig's convention), along each
+/// joint's first child: `z_i` along axis i, `x_i` along the common normal from axis i to
+/// the axis of i's first child, origin where that normal leaves axis i (for parallel axes:
+/// where the parent's normal landed, so `d_i = 0`). A joint that is not its parent's first
+/// child (or a root joint) starts from the point of its axis nearest its parent's origin.
+fn dh_frames(lines: &[AxisLine], parents: &[Option<usize>]) -> Vec<Matrix4<f64>> {
     let n = lines.len();
-    let mut frames = Vec::with_capacity(n);
-    // Where the previous common normal lands on axis i; for axis 1 the point nearest {0}'s origin.
-    let first = &lines[0];
-    let mut landing = first.point - first.dir * first.dir.dot(&first.point);
-    let mut prev_x = Vector3::x();
+    let mut first_child: Vec<Option<usize>> = vec![None; n];
+    for (j, p) in parents.iter().enumerate().rev() {
+        if let Some(p) = p {
+            first_child[*p] = Some(j);
+        }
+    }
+    let mut frames: Vec<Matrix4<f64>> = Vec::with_capacity(n);
+    // Where the parent's common normal lands on axis i, for first children.
+    let mut landing_of: Vec<Option<Vector3<f64>>> = vec![None; n];
     for i in 0..n {
         let AxisLine { point, dir: z } = &lines[i];
-        let (origin, x, next_landing) = if i + 1 < n {
-            let next = &lines[i + 1];
-            let c = z.cross(&next.dir);
-            // Closest point of axis i to axis i+1, and its mirror on axis i+1; for nearly
-            // parallel axes these run off far away (ill-conditioned): treat them as parallel.
-            let w = next.point - point;
-            let c2 = c.norm_squared().max(f64::MIN_POSITIVE);
-            let s = w.cross(&next.dir).dot(&c) / c2;
-            let t = w.cross(z).dot(&c) / c2;
-            if c.norm() > 1e-6 && s.abs() < FAR && t.abs() < FAR {
-                let o = point + z * s;
-                let land = next.point + next.dir * t;
-                // The normal is perpendicular to axis i by construction; re-project so that
-                // rounding in s and t cannot tilt the frame.
-                let gap = land - o;
-                let gap = gap - z * z.dot(&gap);
-                let x = if gap.norm() > 1e-9 {
-                    gap.normalize()
-                } else {
-                    let cn = c.normalize();
-                    if cn.dot(&prev_x) < 0.0 {
-                        -cn
+        let (parent_origin, prev_x) = match parents[i] {
+            Some(p) => (
+                translation(&frames[p]),
+                frames[p].fixed_view::<3, 1>(0, 0).into_owned(),
+            ),
+            None => (Vector3::zeros(), Vector3::x()),
+        };
+        let landing = landing_of[i].unwrap_or_else(|| {
+            // The point of axis i nearest the parent's origin.
+            point + z * z.dot(&(parent_origin - point))
+        });
+        let (origin, x) = match first_child[i] {
+            Some(next_i) => {
+                let next = &lines[next_i];
+                let c = z.cross(&next.dir);
+                // Closest point of axis i to the child's axis, and its mirror on that axis;
+                // for nearly parallel axes these run off far away (ill-conditioned): treat
+                // them as parallel.
+                let w = next.point - point;
+                let c2 = c.norm_squared().max(f64::MIN_POSITIVE);
+                let s = w.cross(&next.dir).dot(&c) / c2;
+                let t = w.cross(z).dot(&c) / c2;
+                if c.norm() > 1e-6 && s.abs() < FAR && t.abs() < FAR {
+                    let o = point + z * s;
+                    let land = next.point + next.dir * t;
+                    // The normal is perpendicular to axis i by construction; re-project so
+                    // that rounding in s and t cannot tilt the frame.
+                    let gap = land - o;
+                    let gap = gap - z * z.dot(&gap);
+                    let x = if gap.norm() > 1e-9 {
+                        gap.normalize()
                     } else {
-                        cn
-                    }
-                };
-                (o, x, land)
-            } else {
-                // Parallel axes: start at the previous landing point (d = 0).
-                let o = landing;
-                let w = next.point - o;
-                let perp = w - z * z.dot(&w);
-                let x = if perp.norm() > 1e-9 {
-                    perp.normalize()
+                        let cn = c.normalize();
+                        if cn.dot(&prev_x) < 0.0 {
+                            -cn
+                        } else {
+                            cn
+                        }
+                    };
+                    landing_of[next_i] = Some(land);
+                    (o, x)
                 } else {
-                    perpendicular(z, &prev_x)
-                };
-                (o, x, o + perp)
+                    // Parallel axes: start at the landing point (d = 0).
+                    let o = landing;
+                    let w = next.point - o;
+                    let perp = w - z * z.dot(&w);
+                    let x = if perp.norm() > 1e-9 {
+                        perp.normalize()
+                    } else {
+                        perpendicular(z, &prev_x)
+                    };
+                    landing_of[next_i] = Some(o + perp);
+                    (o, x)
+                }
             }
-        } else {
-            (landing, perpendicular(z, &prev_x), landing)
+            None => (landing, perpendicular(z, &prev_x)),
         };
         let y = z.cross(&x);
         frames.push(rp_to_trans(&Matrix3::from_columns(&[x, y, *z]), &origin));
-        landing = next_landing;
-        prev_x = x;
     }
     frames
 }
@@ -339,11 +363,8 @@ fn rows(r: &Matrix3<f64>) -> [[f64; 3]; 3] {
 /// Expresses `robot` in modified-DH joint frames (see the module docs).
 pub fn joint_frames(robot: &Robot) -> JointFrames {
     let lines = axis_lines(robot);
-    let frames = if lines.is_empty() {
-        Vec::new()
-    } else {
-        dh_frames(&lines)
-    };
+    let parents = robot.parents();
+    let frames = dh_frames(&lines, &parents);
     let homes = robot.home_poses();
     let mut joints = Vec::with_capacity(robot.dof());
     for (i, (joint, link)) in robot.joints.iter().zip(&robot.links).enumerate() {
@@ -353,33 +374,32 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
         let inertia = snap_inertia(BodyInertia::from_spatial(
             &link.inertia.transform_by(&t_link_joint),
         ));
-        let t_prev = if i == 0 {
-            Matrix4::identity()
-        } else {
-            frames[i - 1]
-        };
-        // Pose of {J_i} in {J_{i−1}} at home.
+        let parent = link.parent;
+        let t_prev = parent.map_or(Matrix4::identity(), |p| frames[p]);
+        // Pose of {J_i} in {J_λ(i)} at home.
         let x = trans_inv(&t_prev) * t_0j;
-        let dh = if i == 0 {
-            None
-        } else {
-            dh_parameters(joint.kind, &x)
-        };
+        let dh = parent.and_then(|_| dh_parameters(joint.kind, &x));
         let (r, p, offset) = dh.unwrap_or_else(|| {
             let c = trans_inv(&x);
             (rotation(&c), translation(&c), 0.0)
         });
         joints.push(JointFrame {
             kind: joint.kind,
+            parent,
             r: rows(&r),
             p: [p[0], p[1], p[2]],
             inertia,
             offset,
         });
     }
-    regroup(&mut joints, &frames);
+    let mut base = robot
+        .base
+        .floating
+        .then(|| snap_inertia(BodyInertia::from_spatial(&robot.base.inertia)));
+    regroup(&mut joints, &mut base, &frames);
     JointFrames {
         joints,
+        base,
         gravity: [robot.gravity[0], robot.gravity[1], robot.gravity[2]],
     }
 }
@@ -391,10 +411,10 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
 /// it drives or to the link before it. Link i's mass `m`, first moment `h_z` along the axis
 /// and an equal share `λ = I_yy` of `I_xx` and `I_yy` are exactly such a distribution
 /// (`Σm = m`, `Σmz = h_z`, `Σmz² = λ`; the dynamics are linear in these parameters, so the
-/// distribution need not be physical), so they are moved to link i−1 (dropped at the fixed
-/// base). Link i keeps `h_x, h_y, I_xx − I_yy, I_zz, I_xy, I_xz, I_yz`: three fewer non-zero
+/// distribution need not be physical), so they are moved to link λ(i) (to a floating base;
+/// dropped at a fixed base). Link i keeps `h_x, h_y, I_xx − I_yy, I_zz, I_xy, I_xz, I_yz`: three fewer non-zero
 /// parameters per revolute joint, and the dynamics are unchanged.
-pub fn regroup(joints: &mut [JointFrame], frames: &[Matrix4<f64>]) {
+pub fn regroup(joints: &mut [JointFrame], base: &mut Option<BodyInertia>, frames: &[Matrix4<f64>]) {
     for i in (0..joints.len()).rev() {
         if joints[i].kind != JointKind::Revolute {
             continue;
@@ -411,12 +431,20 @@ pub fn regroup(joints: &mut [JointFrame], frames: &[Matrix4<f64>]) {
             h: [b.h[0], b.h[1], 0.0],
             i: [b.i[0] - lambda, 0.0, b.i[2], b.i[3], b.i[4], b.i[5]],
         };
-        if i > 0 {
-            // The moved masses lie on axis i: express them in {J_{i−1}} at any θ_i.
-            let t = trans_inv(&frames[i - 1]) * frames[i];
-            let g = moved.to_spatial().expressed_in(&t);
-            let parent = joints[i - 1].inertia.to_spatial();
-            joints[i - 1].inertia = snap_inertia(BodyInertia::from_spatial(&(parent + g)));
+        // The moved masses lie on axis i: express them in the parent's frame at any θ_i.
+        match joints[i].parent {
+            Some(p) => {
+                let t = trans_inv(&frames[p]) * frames[i];
+                let g = moved.to_spatial().expressed_in(&t);
+                let parent = joints[p].inertia.to_spatial();
+                joints[p].inertia = snap_inertia(BodyInertia::from_spatial(&(parent + g)));
+            }
+            None => {
+                if let Some(b) = base {
+                    let g = moved.to_spatial().expressed_in(&frames[i]);
+                    *b = snap_inertia(BodyInertia::from_spatial(&(b.to_spatial() + g)));
+                }
+            }
         }
     }
 }

@@ -57,3 +57,59 @@ pub fn ldlt_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> 
     }
     x
 }
+
+/// Solves `M x = b` symbolically by the factorisation `M = Lᵀ D L` from the last row up
+/// (Featherstone's LTDL, *Rigid Body Dynamics Algorithms* §6.5):
+///
+/// ```text
+/// for k = n..1:  D_k = M_kk;  L_ki = M_ki / D_k (i < k);  M_ij −= L_ki M_kj (j ≤ i < k)
+/// y = L⁻ᵀ b,  z = D⁻¹ y,  x = L⁻¹ z
+/// ```
+///
+/// On a tree in topological order (every joint after its parent) `M_ki` is non-zero only
+/// for ancestors i of k, and the update touches only pairs of ancestors, which are non-zero
+/// already: no fill-in, so the structural zeros of `M` (exact zeros in the graph) stay zero
+/// and cost nothing. `m` is n×n row-major and symmetric (only the lower triangle is read).
+pub fn ltdl_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
+    let n = b.len();
+    let zero = g.zero();
+    let one = g.one();
+    // The lower triangle, overwritten by L below the diagonal.
+    let mut h: Vec<ExprId> = (0..n * n)
+        .map(|k| if k % n <= k / n { m[k] } else { zero })
+        .collect();
+    let mut inv_d = vec![one; n];
+    for k in (0..n).rev() {
+        inv_d[k] = g.div(one, h[k * n + k]);
+        // i descending, so that M_kj (j < i) is read before it is overwritten by L_kj.
+        for i in (0..k).rev() {
+            let l = g.mul(h[k * n + i], inv_d[k]);
+            if g.is_zero(l) {
+                continue;
+            }
+            for j in 0..=i {
+                let t = g.mul(l, h[k * n + j]);
+                h[i * n + j] = g.sub(h[i * n + j], t);
+            }
+            h[k * n + i] = l;
+        }
+        // Entries with L_ki = 0 keep M_ki = 0 there (structural zeros), so h[k][i] is L_ki.
+    }
+    // Lᵀ y = b, from the last row up.
+    let mut y = b.to_vec();
+    for k in (0..n).rev() {
+        for i in 0..k {
+            let t = g.mul(h[k * n + i], y[k]);
+            y[i] = g.sub(y[i], t);
+        }
+    }
+    // z = D⁻¹ y, then L x = z from the first row down.
+    let mut x: Vec<ExprId> = (0..n).map(|i| g.mul(y[i], inv_d[i])).collect();
+    for i in 0..n {
+        for j in 0..i {
+            let t = g.mul(h[i * n + j], x[j]);
+            x[i] = g.sub(x[i], t);
+        }
+    }
+    x
+}

@@ -31,6 +31,7 @@
 //! (groups [`Q`], [`QD`], [`QDD`], [`TAU`]), and `sin q_i`, `cos q_i` of revolute joints.
 
 pub mod aba;
+pub mod base;
 pub mod crba;
 pub mod frames;
 pub mod ldlt;
@@ -76,15 +77,19 @@ pub struct Dynamics {
     pub graph: ExprGraph,
     /// n, the number of joints.
     pub dof: usize,
-    /// `M(q)`, n×n row-major.
+    /// The length of q: n, or n + 7 with a floating base.
+    pub nq: usize,
+    /// The length of ν, ν̇ and τ: n, or n + 6 with a floating base.
+    pub nv: usize,
+    /// `M(q)`, nv×nv row-major.
     pub mass_matrix: Vec<ExprId>,
-    /// `c(q, q̇)`: Coriolis and centrifugal terms.
+    /// `c(q, ν)`: Coriolis and centrifugal terms.
     pub coriolis: Vec<ExprId>,
     /// `g(q)`: gravity terms.
     pub gravity: Vec<ExprId>,
-    /// `τ = M q̈ + c + g`.
+    /// `τ = M ν̇ + c + g`.
     pub inverse_dynamics: Vec<ExprId>,
-    /// `q̈ = M⁻¹(τ − c − g)`.
+    /// `ν̇ = M⁻¹(τ − c − g)`.
     pub forward_dynamics: Vec<ExprId>,
     /// The algorithm `forward_dynamics` was expanded with.
     pub forward_route: ForwardRoute,
@@ -101,52 +106,87 @@ pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
     expand_routes(robot, Some(route), true)
 }
 
+/// The cheaper of two equal expansions (ties keep `a`).
+fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<ExprId> {
+    if g.op_counts(&b).total() < g.op_counts(&a).total() {
+        b
+    } else {
+        a
+    }
+}
+
 /// The expansion; `prune`: replace identically zero nodes by 0 ([`ExprGraph::prune_zeros`]).
 pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: bool) -> Dynamics {
     let frames = frames::joint_frames(robot);
     let n = robot.dof();
+    let floating = frames.base.is_some();
+    // Offsets of the joints in q and in ν: after the base's position and quaternion, and
+    // after its twist.
+    let (oq, ov) = if floating {
+        (base::NQ_BASE, base::NV_BASE)
+    } else {
+        (0, 0)
+    };
+    let nv = n + ov;
     let mut g = ExprGraph::new();
-    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, i))).collect();
-    let qd: Vec<ExprId> = (0..n).map(|i| g.input(input(QD, i))).collect();
-    let qdd: Vec<ExprId> = (0..n).map(|i| g.input(input(QDD, i))).collect();
-    let tau: Vec<ExprId> = (0..n).map(|i| g.input(input(TAU, i))).collect();
+    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, oq + i))).collect();
+    let qd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
+    let qdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
+    let tau: Vec<ExprId> = (0..nv).map(|i| g.input(input(TAU, i))).collect();
     let zero = g.zero();
-    let zeros = vec![zero; n];
+    let zeros = vec![zero; nv];
     let motions = joint_motions(&mut g, &frames, &q);
+    let base_inertia = frames.base.as_ref();
     let no_gravity = [0.0; 3];
-    let mass_matrix = crba::crba(&mut g, &motions);
-    let best_rnea = |g: &mut ExprGraph, qd: &[ExprId], qdd: &[ExprId], gravity: [f64; 3]| {
-        let a = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Spatial);
-        let b = rnea::rnea(g, &motions, qd, qdd, gravity, LinkForce::Classical);
-        let c = rnea_classical::rnea_classical(g, &motions, qd, qdd, gravity);
+    let mass_matrix = crba::crba(&mut g, &motions, base_inertia);
+    let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: [f64; 3]| {
+        let base = base::base_motion(g, floating, &v[..ov], &vd[..ov], gravity);
+        let (v, vd) = (&v[ov..], &vd[ov..]);
+        let a = rnea::rnea(g, &motions, &base, base_inertia, v, vd, LinkForce::Spatial);
+        let b = rnea::rnea(
+            g,
+            &motions,
+            &base,
+            base_inertia,
+            v,
+            vd,
+            LinkForce::Classical,
+        );
+        let c = rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd);
         // The cheapest of the equal forms (ties keep the earlier one).
-        let mut best = a;
-        for candidate in [b, c] {
-            if g.op_counts(&candidate).total() < g.op_counts(&best).total() {
-                best = candidate;
-            }
-        }
-        best
+        let best = cheaper(g, a, b);
+        cheaper(g, best, c)
     };
     let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
     let gravity = best_rnea(&mut g, &zeros, &zeros, frames.gravity);
     let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, frames.gravity);
     let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
-    let rhs: Vec<ExprId> = (0..n).map(|i| g.sub(tau[i], bias[i])).collect();
+    let rhs: Vec<ExprId> = (0..nv).map(|i| g.sub(tau[i], bias[i])).collect();
+    // The factorisation from the first row (L D Lᵀ) or from the last (Lᵀ D L, which keeps a
+    // tree's structural zeros): the cheaper.
     let by_ldlt = ldlt::ldlt_solve(&mut g, &mass_matrix, &rhs);
+    let by_ltdl = ldlt::ltdl_solve(&mut g, &mass_matrix, &rhs);
+    let by_ldlt = cheaper(&g, by_ldlt, by_ltdl);
     // The cheapest of the equal ways of writing out the articulated inertias' shifts and
     // the bias wrenches (ties keep the earlier one).
+    let aba_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], frames.gravity);
     let mut by_aba: Option<Vec<ExprId>> = None;
     for bias in [LinkForce::Spatial, LinkForce::Classical] {
         for form in [ShiftForm::Direct, ShiftForm::Folded, ShiftForm::Sparse] {
-            let candidate = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity, form, bias);
-            let better = match &by_aba {
-                None => true,
-                Some(best) => g.op_counts(&candidate).total() < g.op_counts(best).total(),
-            };
-            if better {
-                by_aba = Some(candidate);
-            }
+            let candidate = aba::aba(
+                &mut g,
+                &motions,
+                &aba_base,
+                base_inertia,
+                &qd[ov..],
+                &tau,
+                form,
+                bias,
+            );
+            by_aba = Some(match by_aba {
+                None => candidate,
+                Some(best) => cheaper(&g, best, candidate),
+            });
         }
     }
     let by_aba = by_aba.unwrap_or_default();
@@ -187,6 +227,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     Dynamics {
         graph: g,
         dof: n,
+        nq: n + oq,
+        nv,
         mass_matrix,
         coriolis,
         gravity,

@@ -29,30 +29,41 @@ pub enum LinkForce {
     Classical,
 }
 
-/// τ for the given symbolic velocities and accelerations (use constant zeros to drop terms)
-/// and gravity `gravity` in {0}.
+/// The base's motion seen by the recursions: its twist `V_0` and its acceleration with
+/// gravity folded in, `V̇_0 − (0, g_0)` (g_0: gravity in the base frame). A fixed base has
+/// `V_0 = 0` and `V̇_0 = (0, −g)`; a floating one its body twist and acceleration from the
+/// inputs, and gravity turned into the base frame (see [`super::base`]).
+#[derive(Clone, Copy, Debug)]
+pub struct BaseMotion {
+    /// `V_0`.
+    pub v: Spatial,
+    /// `V̇_0 − (0, g_0)`.
+    pub vd: Spatial,
+}
+
+/// The generalised forces for the given symbolic velocities and accelerations (use constant
+/// zeros to drop terms), the base's motion `base` included: with a floating base
+/// (`base_inertia`, in the base frame) the six base entries (the wrench `(m, f)` on the
+/// base, in its frame) come first.
 pub fn rnea(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
+    base: &BaseMotion,
+    base_inertia: Option<&super::frames::BodyInertia>,
     qd: &[ExprId],
     qdd: &[ExprId],
-    gravity: [f64; 3],
     form: LinkForce,
 ) -> Vec<ExprId> {
     let n = joints.len();
-    let zero = g.zero3();
-    let mut v = Spatial {
-        ang: zero,
-        lin: zero,
-    };
-    let minus_g = [-gravity[0], -gravity[1], -gravity[2]];
-    let mut vd = Spatial {
-        ang: zero,
-        lin: g.const3(minus_g),
-    };
+    let mut vs: Vec<Spatial> = Vec::with_capacity(n);
+    let mut vds: Vec<Spatial> = Vec::with_capacity(n);
     let mut forces = Vec::with_capacity(n);
     // Forward pass: twists and accelerations; the link wrench G V̇ − adᵀ_V G V.
     for (i, jm) in joints.iter().enumerate() {
+        let (v, vd) = match jm.frame.parent {
+            Some(p) => (vs[p], vds[p]),
+            None => (base.v, base.vd),
+        };
         let mut vi = jm.motion_to_child(g, v);
         let mut vdi = jm.motion_to_child(g, vd);
         // [ad_V] A θ̇: for A = (e_z, 0) it is (ω × e_z, v × e_z) θ̇; for A = (0, e_z), (0, ω × e_z) θ̇.
@@ -82,67 +93,103 @@ pub fn rnea(
         };
         *k = g.add(*k, qdd[i]);
         let gi = Inertia::constant(g, &jm.frame.inertia);
-        let (f_ang, f_lin) = match form {
-            LinkForce::Spatial => {
-                // F = G V̇ − [ad_V]ᵀ G V, with −[ad_V]ᵀ (k, l) = (ω × k + v × l, ω × l).
-                let gvd = gi.apply(g, &vdi);
-                let p = gi.apply(g, &vi);
-                let wk = g.cross(vi.ang, p.ang);
-                let vl = g.cross(vi.lin, p.lin);
-                let wl = g.cross(vi.ang, p.lin);
-                let bias_ang = g.add3(wk, vl);
-                (g.add3(gvd.ang, bias_ang), g.add3(gvd.lin, wl))
-            }
-            LinkForce::Classical => {
-                // The same wrench through the classical acceleration a = v̇ + ω × v of the
-                // frame's origin: n = I ω̇ + ω × I ω + h × a, f = m a + ω̇ × h + ω × (ω × h).
-                let wxv = g.cross(vi.ang, vi.lin);
-                let a = g.add3(vdi.lin, wxv);
-                let iwd = gi.rotational(g, vdi.ang);
-                let iw = gi.rotational(g, vi.ang);
-                let w_iw = g.cross(vi.ang, iw);
-                let hxa = g.cross(gi.h, a);
-                let n1 = g.add3(iwd, w_iw);
-                let ma = g.scale3(gi.m, a);
-                let wdxh = g.cross(vdi.ang, gi.h);
-                let wxh = g.cross(vi.ang, gi.h);
-                let wwh = g.cross(vi.ang, wxh);
-                let f1 = g.add3(ma, wdxh);
-                (g.add3(n1, hxa), g.add3(f1, wwh))
-            }
-        };
-        forces.push(Spatial {
-            ang: f_ang,
-            lin: f_lin,
-        });
-        v = vi;
-        vd = vdi;
+        forces.push(link_force(g, &gi, &vi, &vdi, form));
+        vs.push(vi);
+        vds.push(vdi);
     }
-    backward_pass(g, joints, &forces)
+    let base_force = base_inertia.map(|b| {
+        let gb = Inertia::constant(g, b);
+        link_force(g, &gb, &base.v, &base.vd, form)
+    });
+    backward_pass(g, joints, &forces, base_force)
 }
 
-/// The backward pass shared by both Newton–Euler forms: accumulate the link wrenches toward
-/// the base, `F_i = F_i^link + [Ad_{T_{i+1,i}}]ᵀ F_{i+1}`, and read `τ_i = A_iᵀ F_i`.
+/// The wrench `F = G V̇ − [ad_V]ᵀ G V` of a body with inertia `gi`, twist `v` and
+/// acceleration `vd`, written out as `form` says.
+pub fn link_force(
+    g: &mut ExprGraph,
+    gi: &Inertia,
+    vi: &Spatial,
+    vdi: &Spatial,
+    form: LinkForce,
+) -> Spatial {
+    let (f_ang, f_lin) = match form {
+        LinkForce::Spatial => {
+            // F = G V̇ − [ad_V]ᵀ G V, with −[ad_V]ᵀ (k, l) = (ω × k + v × l, ω × l).
+            let gvd = gi.apply(g, vdi);
+            let p = gi.apply(g, vi);
+            let wk = g.cross(vi.ang, p.ang);
+            let vl = g.cross(vi.lin, p.lin);
+            let wl = g.cross(vi.ang, p.lin);
+            let bias_ang = g.add3(wk, vl);
+            (g.add3(gvd.ang, bias_ang), g.add3(gvd.lin, wl))
+        }
+        LinkForce::Classical => {
+            // The same wrench through the classical acceleration a = v̇ + ω × v of the
+            // frame's origin: n = I ω̇ + ω × I ω + h × a, f = m a + ω̇ × h + ω × (ω × h).
+            let wxv = g.cross(vi.ang, vi.lin);
+            let a = g.add3(vdi.lin, wxv);
+            let iwd = gi.rotational(g, vdi.ang);
+            let iw = gi.rotational(g, vi.ang);
+            let w_iw = g.cross(vi.ang, iw);
+            let hxa = g.cross(gi.h, a);
+            let n1 = g.add3(iwd, w_iw);
+            let ma = g.scale3(gi.m, a);
+            let wdxh = g.cross(vdi.ang, gi.h);
+            let wxh = g.cross(vi.ang, gi.h);
+            let wwh = g.cross(vi.ang, wxh);
+            let f1 = g.add3(ma, wdxh);
+            (g.add3(n1, hxa), g.add3(f1, wwh))
+        }
+    };
+    Spatial {
+        ang: f_ang,
+        lin: f_lin,
+    }
+}
+
+/// The backward pass shared by the Newton–Euler forms: accumulate the link wrenches toward
+/// the base, `F_λ(i) += [Ad_{T_{i,λ(i)}}]ᵀ F_i` (children before parents: reverse order),
+/// and read `τ_i = A_iᵀ F_i`; with a floating base (`base_force` = the base body's own
+/// wrench) the six base entries, the total wrench on the base, come first.
 pub fn backward_pass(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
     forces: &[Spatial],
+    base_force: Option<Spatial>,
 ) -> Vec<ExprId> {
     let n = joints.len();
+    let mut acc = forces.to_vec();
+    let mut base = base_force;
     let mut tau = vec![g.zero(); n];
-    let mut child: Option<Spatial> = None;
     for i in (0..n).rev() {
-        let mut f = forces[i];
-        if let Some(fc) = child {
-            let fp = joints[i + 1].force_to_parent(g, fc);
-            f.ang = g.add3(f.ang, fp.ang);
-            f.lin = g.add3(f.lin, fp.lin);
-        }
+        let f = acc[i];
         tau[i] = match joints[i].frame.kind {
             JointKind::Revolute => f.ang[2],
             JointKind::Prismatic => f.lin[2],
         };
-        child = Some(f);
+        let target = match joints[i].frame.parent {
+            Some(p) => &mut acc[p],
+            None => match &mut base {
+                Some(b) => b,
+                None => continue,
+            },
+        };
+        let fp = joints[i].force_to_parent(g, f);
+        let sum = Spatial {
+            ang: g.add3(target.ang, fp.ang),
+            lin: g.add3(target.lin, fp.lin),
+        };
+        *target = sum;
     }
-    tau
+    match base {
+        Some(b) => {
+            let mut out = Vec::with_capacity(n + 6);
+            out.extend(b.ang);
+            out.extend(b.lin);
+            out.extend(tau);
+            out
+        }
+        None => tau,
+    }
 }

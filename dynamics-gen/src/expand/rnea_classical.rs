@@ -15,8 +15,12 @@
 //! backward, i = n..1:  F_i = (n_i, f_i) + [Ad_{T_{i+1,i}}]ᵀ F_{i+1},  τ_i = F_iᵀ A_i
 //! ```
 //!
-//! with `ω_0 = ω̇_0 = 0` and `a_0 = −g`: gravity is an upward acceleration of the base.
+//! with `ω_0 = ω̇_0 = 0` and `a_0 = −g` on a fixed base (gravity is an upward acceleration of
+//! the base), or the floating base's `ω_0`, `ω̇_0` and `a_0 = v̇_0 + ω_0 × v_0 − g_0`; on a
+//! tree `i − 1` reads `λ(i)` and the backward pass adds each wrench into its parent's.
 
+use super::frames::BodyInertia;
+use super::rnea::{link_force, BaseMotion, LinkForce};
 use super::spatial::{rot_z_t, Inertia, JointMotion, Spatial, VectorOps, V3};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
@@ -37,22 +41,31 @@ fn transport(g: &mut ExprGraph, a: V3, w: V3, w_sq: ExprId, wd: V3, r: V3) -> V3
     g.add3(a, t)
 }
 
-/// τ for the given symbolic velocities and accelerations and gravity in {0}.
+/// The generalised forces for the given symbolic velocities and accelerations and the
+/// base's motion, as [`super::rnea::rnea`] (base entries first with a floating base).
 pub fn rnea_classical(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
+    base: &BaseMotion,
+    base_inertia: Option<&BodyInertia>,
     qd: &[ExprId],
     qdd: &[ExprId],
-    gravity: [f64; 3],
 ) -> Vec<ExprId> {
     let n = joints.len();
-    let mut w = g.zero3();
-    // |ω_i|², carried along: a rotation keeps it, and a revolute joint adds θ̇ (2 ω_z + θ̇).
-    let mut w_sq = g.zero();
-    let mut wd = g.zero3();
-    let mut a = g.const3([-gravity[0], -gravity[1], -gravity[2]]);
+    // The base's ω, |ω|², ω̇ and the classical acceleration a = v̇ + ω × v of its origin.
+    let base_w = base.v.ang;
+    let base_w_sq = g.dot(&base_w, &base_w);
+    let base_wxv = g.cross(base.v.ang, base.v.lin);
+    let base_a = g.add3(base.vd.lin, base_wxv);
+    // Per joint: ω, |ω|² (carried along: a rotation keeps it, and a revolute joint adds
+    // θ̇ (2 ω_z + θ̇)), ω̇, a.
+    let mut states: Vec<(V3, ExprId, V3, V3)> = Vec::with_capacity(n);
     let mut forces = Vec::with_capacity(n);
     for (i, jm) in joints.iter().enumerate() {
+        let (mut w, mut w_sq, mut wd, mut a) = match jm.frame.parent {
+            Some(p) => states[p],
+            None => (base_w, base_w_sq, base.vd.ang, base_a),
+        };
         let f = jm.frame;
         let w_k = g.rot(&f.r, w);
         let wd_k = g.rot(&f.r, wd);
@@ -105,6 +118,11 @@ pub fn rnea_classical(
             ang: g.add3(n1, hxa),
             lin: g.add3(f1, wwh),
         });
+        states.push((w, w_sq, wd, a));
     }
-    super::rnea::backward_pass(g, joints, &forces)
+    let base_force = base_inertia.map(|b| {
+        let gb = Inertia::constant(g, b);
+        link_force(g, &gb, &base.v, &base.vd, LinkForce::Classical)
+    });
+    super::rnea::backward_pass(g, joints, &forces, base_force)
 }

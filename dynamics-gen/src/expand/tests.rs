@@ -285,7 +285,8 @@ fn every_aba_form_matches_ldlt() {
             (ShiftForm::Folded, rnea::LinkForce::Classical),
             (ShiftForm::Sparse, rnea::LinkForce::Spatial),
         ] {
-            let roots = aba::aba(&mut g, &motions, &qd, &tau, frames.gravity, form, bias);
+            let base = base::base_motion(&mut g, false, &[], &[], frames.gravity);
+            let roots = aba::aba(&mut g, &motions, &base, None, &qd, &tau, form, bias);
             let x = g.eval(&roots, &|x: Input| {
                 let i = x.index as usize;
                 match x.group {

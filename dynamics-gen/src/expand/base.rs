@@ -1,0 +1,109 @@
+//! The base's motion as the recursions see it ([`BaseMotion`]): fixed, or floating.
+//!
+//! A fixed base has `V_0 = 0` and `V̇_0 = (0, −g)`: gravity enters as an upward acceleration
+//! of the base. A floating base (a free joint between the world {0} and the base) has the
+//! body twist `ν_0 = (ω_b, v_b)` and acceleration `ν̇_0` from the inputs, and gravity turned
+//! into the base frame, `V̇_0 = ν̇_0 + (0, −Rᵀ g)`, with `R` the base orientation from the
+//! quaternion `(x, y, z, w) = q[3..7]` (scalar last), normalised on the way:
+//!
+//! ```text
+//! s = x² + y² + z² + w²,   k = 2 / s
+//! R = [[1 − k(y² + z²),  k(xy − zw),      k(xz + yw)    ],
+//!      [k(xy + zw),      1 − k(x² + z²),  k(yz − xw)    ],
+//!      [k(xz − yw),      k(yz + xw),      1 − k(x² + y²)]]
+//! ```
+//!
+//! which is the rotation of `quat / |quat|` for any non-zero quaternion (the code never
+//! trusts it to be unit). The base position `q[0..3]` does not enter the dynamics.
+
+use super::rnea::BaseMotion;
+use super::spatial::{Spatial, VectorOps, V3};
+use super::{input, Q};
+use crate::expr::{ExprGraph, ExprId};
+
+/// Index of the quaternion's first entry (x) in q.
+pub const QUAT: usize = 3;
+/// Number of configuration entries of a floating base (position and quaternion).
+pub const NQ_BASE: usize = 7;
+/// Number of velocity entries of a floating base (its body twist).
+pub const NV_BASE: usize = 6;
+
+/// `Rᵀ g` for the gravity vector `gravity` in {0}, with `R` from the (normalised)
+/// quaternion inputs `q[3..7]`.
+pub fn gravity_in_base(g: &mut ExprGraph, gravity: [f64; 3]) -> V3 {
+    let [x, y, z, w] = std::array::from_fn(|k| g.input(input(Q, QUAT + k)));
+    let sq = |g: &mut ExprGraph, a: ExprId| g.mul(a, a);
+    let (xx, yy, zz, ww) = (sq(g, x), sq(g, y), sq(g, z), sq(g, w));
+    let s = g.sum(&[xx, yy, zz, ww]);
+    let two = g.constant(2.0);
+    let k = g.div(two, s);
+    let one = g.one();
+    let prod = |g: &mut ExprGraph, a: ExprId, b: ExprId| g.mul(a, b);
+    let (xy, zw, xz, yw, yz, xw) = (
+        prod(g, x, y),
+        prod(g, z, w),
+        prod(g, x, z),
+        prod(g, y, w),
+        prod(g, y, z),
+        prod(g, x, w),
+    );
+    let diag = |g: &mut ExprGraph, a: ExprId, b: ExprId| {
+        let t = g.add(a, b);
+        let t = g.mul(k, t);
+        g.sub(one, t)
+    };
+    let off = |g: &mut ExprGraph, a: ExprId, b: ExprId, plus: bool| {
+        let t = if plus { g.add(a, b) } else { g.sub(a, b) };
+        g.mul(k, t)
+    };
+    let r = [
+        [diag(g, yy, zz), off(g, xy, zw, false), off(g, xz, yw, true)],
+        [off(g, xy, zw, true), diag(g, xx, zz), off(g, yz, xw, false)],
+        [off(g, xz, yw, false), off(g, yz, xw, true), diag(g, xx, yy)],
+    ];
+    // (Rᵀ g)_j = Σ_i R_ij g_i; zero components of g fold away.
+    std::array::from_fn(|j| {
+        let terms: Vec<ExprId> = (0..3)
+            .filter(|&i| gravity[i] != 0.0)
+            .map(|i| g.cmul(gravity[i], r[i][j]))
+            .collect();
+        g.sum(&terms)
+    })
+}
+
+/// The base's motion: fixed (`velocity`, `acceleration` unused), or floating with the
+/// base entries of `velocity` and `acceleration` (ν and ν̇, base first); `gravity` in {0}.
+pub fn base_motion(
+    g: &mut ExprGraph,
+    floating: bool,
+    velocity: &[ExprId],
+    acceleration: &[ExprId],
+    gravity: [f64; 3],
+) -> BaseMotion {
+    if !floating {
+        let zero = g.zero3();
+        return BaseMotion {
+            v: Spatial {
+                ang: zero,
+                lin: zero,
+            },
+            vd: Spatial {
+                ang: zero,
+                lin: g.const3([-gravity[0], -gravity[1], -gravity[2]]),
+            },
+        };
+    }
+    let v = Spatial {
+        ang: [velocity[0], velocity[1], velocity[2]],
+        lin: [velocity[3], velocity[4], velocity[5]],
+    };
+    let mut vd = Spatial {
+        ang: [acceleration[0], acceleration[1], acceleration[2]],
+        lin: [acceleration[3], acceleration[4], acceleration[5]],
+    };
+    if gravity.iter().any(|&x| x != 0.0) {
+        let gb = gravity_in_base(g, gravity);
+        vd.lin = g.sub3(vd.lin, gb);
+    }
+    BaseMotion { v, vd }
+}
