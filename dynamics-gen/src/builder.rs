@@ -88,6 +88,16 @@ impl Builder {
         self
     }
 
+    /// Puts a free 6-DoF joint between the world and the robot's base (a URDF whose root
+    /// joint is `floating`, or a TOML `[base] floating = true`, has one already): the
+    /// generated functions then take `q = (p, quat (x, y, z, w), θ)` of length `NQ = n + 7`
+    /// and `ν = (ω_b, v_b, θ̇)`, `τ = (m_b, f_b, τ_θ)` of length `NV = n + 6`, base twist and
+    /// wrench in the base frame.
+    pub fn floating_base(mut self, floating: bool) -> Self {
+        self.options.load.floating_base = floating;
+        self
+    }
+
     /// URDF: the link whose frame is the end-effector frame {n+1}. The generated code has no
     /// pose or Jacobian functions yet, so today this changes nothing in it (the header records
     /// it; the CLI's `eval` uses it for `end_effector_pose` and `f_tip`).
@@ -180,6 +190,9 @@ impl Builder {
         }
         if let Some(g) = o.load.gravity {
             s += &format!(".gravity([{:?}, {:?}, {:?}])", g[0], g[1], g[2]);
+        }
+        if o.load.floating_base {
+            s += ".floating_base(true)";
         }
         if let Some(tip) = &o.load.tip {
             s += &format!(".tip({tip:?})");

@@ -36,6 +36,56 @@ pub struct Stats {
     pub dof: usize,
     /// One entry per generated function, in the order of the generated `impl`.
     pub functions: Vec<FunctionStats>,
+    /// What a kinematic tree saves (`None` when `M` has no structural zeros).
+    pub sparsity: Option<Sparsity>,
+}
+
+/// The savings of a tree's branch-induced sparsity.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Sparsity {
+    /// nv: `M` is nv×nv.
+    pub nv: usize,
+    /// Entries of `M` between dofs on different branches: known zeros, never computed.
+    pub zeros: usize,
+    /// Factorising and solving `M x = b` with the tree's zeros (Lᵀ D L, no fill-in), with
+    /// every other entry of `M` and of `b` an opaque value.
+    pub sparse_solve: OpCounts,
+    /// The same for a dense nv×nv `M` (what a serial chain of nv dofs needs).
+    pub dense_solve: OpCounts,
+}
+
+/// The operation counts of solving `M x = b` (factorisation and substitutions) for an
+/// nv×nv `M` whose entries are opaque values except where `zero(i, j)`.
+fn solve_counts(nv: usize, zero: impl Fn(usize, usize) -> bool) -> (OpCounts, OpCounts) {
+    use crate::expr::{ExprGraph, Input};
+    let mut g = ExprGraph::new();
+    let leaf = |g: &mut ExprGraph, group: u8, k: usize| {
+        g.input(Input {
+            group,
+            index: k as u16,
+        })
+    };
+    let entry = |g: &mut ExprGraph, i: usize, j: usize| {
+        let (i, j) = (i.max(j), i.min(j));
+        leaf(g, 4, i * nv + j)
+    };
+    let b: Vec<ExprId> = (0..nv).map(|i| leaf(&mut g, 5, i)).collect();
+    let dense: Vec<ExprId> = (0..nv * nv)
+        .map(|k| entry(&mut g, k / nv, k % nv))
+        .collect();
+    let zero_id = g.zero();
+    let sparse: Vec<ExprId> = (0..nv * nv)
+        .map(|k| {
+            if zero(k / nv, k % nv) {
+                zero_id
+            } else {
+                dense[k]
+            }
+        })
+        .collect();
+    let x_sparse = crate::expand::ldlt::ltdl_solve(&mut g, &sparse, &b);
+    let x_dense = crate::expand::ldlt::ldlt_solve(&mut g, &dense, &b);
+    (g.op_counts(&x_sparse), g.op_counts(&x_dense))
 }
 
 /// Featherstone's commonly cited operation count of the recursive Newton–Euler algorithm
@@ -63,10 +113,32 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             lines: function_lines(code, name),
         })
         .collect();
+    let nv = d.nv;
+    // Structural zeros: off-diagonal zeros that the tree explains (dofs on different
+    // branches), not zeros that happen to fold.
+    let robot = &generated.robot;
+    let off = nv - d.dof;
+    let related = |i: usize, j: usize| {
+        i < off
+            || j < off
+            || robot.path_to(i - off).contains(&(j - off))
+            || robot.path_to(j - off).contains(&(i - off))
+    };
+    let zeros = (0..nv * nv).filter(|&k| !related(k / nv, k % nv)).count();
+    let sparsity = (zeros > 0).then(|| {
+        let (sparse_solve, dense_solve) = solve_counts(nv, |i, j| !related(i, j));
+        Sparsity {
+            nv,
+            zeros,
+            sparse_solve,
+            dense_solve,
+        }
+    });
     Stats {
         struct_name: generated.struct_name.clone(),
         dof: d.dof,
         functions,
+        sparsity,
     }
 }
 
@@ -109,6 +181,19 @@ impl fmt::Display for Stats {
                 f,
                 "{:<18} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
                 s.name, o.mul, o.add_sub, o.div, o.sqrt, o.sin_cos, o.neg, s.lines
+            )?;
+        }
+        if let Some(sp) = &self.sparsity {
+            writeln!(
+                f,
+                "tree: {} of the {}x{} entries of M are structural zeros (dofs on different branches), never computed",
+                sp.zeros, sp.nv, sp.nv
+            )?;
+            let (s, d) = (sp.sparse_solve, sp.dense_solve);
+            writeln!(
+                f,
+                "solving M x = b with the tree's zeros (Lᵀ D L): {} mul, {} add/sub, {} div; dense (a serial chain of {} dofs): {} mul, {} add/sub, {} div",
+                s.mul, s.add_sub, s.div, sp.nv, d.mul, d.add_sub, d.div
             )?;
         }
         Ok(())

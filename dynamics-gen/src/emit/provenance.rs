@@ -142,6 +142,17 @@ fn describe(generated: &Generated, options: &Options) -> String {
             }
         ),
     ];
+    if robot.base.floating {
+        parts.push(format!(
+            "floating base {}{}",
+            inert(&robot.base.name),
+            if options.load.floating_base {
+                " (by option)"
+            } else {
+                ""
+            }
+        ));
+    }
     if let Some(tip) = &options.load.tip {
         parts.push(format!("tip {}", inert(tip)));
     }

@@ -283,3 +283,6 @@ pub(crate) fn joint_motions<'a>(
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod tree_tests;

@@ -19,7 +19,8 @@ pub const MANIFEST_DIR_OVERRIDE: &str = "DYNAMICS_GEN_MANIFEST_DIR";
 pub struct Attr {
     /// `file = "…"`: the path as written, and its literal.
     pub file: Option<syn::LitStr>,
-    /// Generator options (`scalar`, `no_std`, `nalgebra`, `gravity`, `tip`, `lock`).
+    /// Generator options (`scalar`, `no_std`, `nalgebra`, `gravity`, `floating_base`, `tip`,
+    /// `lock`).
     pub options: Options,
 }
 
@@ -57,6 +58,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     }
                 }
                 "no_std" => attr.options.no_std = true,
+                "floating_base" => attr.options.load.floating_base = true,
                 "no_runtime_trait" => attr.options.runtime_path = None,
                 "runtime" => {
                     let path: syn::Path = meta.value()?.parse()?;
@@ -117,7 +119,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], tip = \"LINK\", lock(JOINT = VALUE, ..), method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", lock(JOINT = VALUE, ..), method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

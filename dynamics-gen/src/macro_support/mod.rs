@@ -59,7 +59,8 @@
 //! ```
 //!
 //! Options: `scalar = "f32"`, `no_std`, `nalgebra = path::to::nalgebra`,
-//! `gravity = [gx, gy, gz]`, `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
+//! `gravity = [gx, gy, gz]`, `floating_base` (a free 6-DoF joint between the world and the
+//! base), `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
 //! and for URDF `tip = "LINK"` and `lock(JOINT = VALUE, ..)`. (`tip` and the TOML
 //! `end_effector` change nothing in the generated code yet: it has no pose functions.)
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the

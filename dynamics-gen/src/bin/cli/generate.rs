@@ -61,6 +61,9 @@ fn command(args: &GenerateArgs) -> String {
     if let Some(tip) = &m.tip {
         words.extend(["--tip".into(), quote(tip)]);
     }
+    if m.floating_base {
+        words.push("--floating-base".into());
+    }
     let locks: Vec<String> = m.lock.iter().map(|(j, v)| format!("{j}={v}")).collect();
     if !locks.is_empty() {
         words.extend(["--lock".into(), quote(&locks.join(","))]);
