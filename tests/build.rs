@@ -2,10 +2,12 @@
 //! the reference URDFs, and seeded random chains (f64 and f32), all through one build.rs.
 
 use dynamics_gen::{Options, Scalar};
-use dynamics_model::random::{random_chain, ChainSpec};
+use dynamics_model::random::{random_chain, random_tree, ChainSpec};
 use dynamics_model::{load, LoadOptions, Robot};
 use std::fmt::Write as _;
 use std::path::PathBuf;
+
+include!("src/tree_spec.rs");
 
 struct Case {
     module: String,
@@ -33,6 +35,18 @@ pub const RANDOM: &[(u64, usize)] = &[
     (114, 6),
     (115, 7),
     (116, 12),
+];
+
+/// The random trees compiled as Rust: (seed, bodies, floating base).
+pub const TREES: &[(u64, usize, bool)] = &[
+    (201, 4, false),
+    (202, 9, true),
+    (203, 14, false),
+    (204, 6, true),
+    (205, 18, true),
+    (206, 11, false),
+    (207, 3, true),
+    (208, 8, true),
 ];
 
 fn main() {
@@ -90,6 +104,17 @@ fn main() {
             no_std: k % 4 == 1,
         });
     }
+    for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {
+        let robot = random_tree(seed, tree_spec(dof, floating));
+        let scalar = if k % 3 == 2 { Scalar::F32 } else { Scalar::F64 };
+        cases.push(Case {
+            module: format!("tree_{seed}_{}", scalar.as_str()),
+            spec: format!("Spec::Tree({seed}, {dof}, {floating})"),
+            robot,
+            scalar,
+            no_std: k % 4 == 3,
+        });
+    }
     // The same robots in f32 and no_std as well.
     for name in ["ur5", "pendulum"] {
         let robot = load(name, &LoadOptions::default()).expect("shipped robot loads");
@@ -117,17 +142,17 @@ fn main() {
             .unwrap_or_else(|e| panic!("{}: {e}", case.module));
         let file = format!("{}.rs", case.module);
         std::fs::write(out.join(&file), code).expect("OUT_DIR is writable");
-        let n = case.robot.dof();
+        let (nq, nv) = (case.robot.nq(), case.robot.nv());
         let s = case.scalar.as_str();
         writeln!(
             modules,
-            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {n}, {s});",
+            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {nq}, {nv}, {s});",
             m = case.module
         )
         .ok();
-        writeln!(list, "        $mac!({}, {n}, {s});", case.module).ok();
+        writeln!(list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         if !case.no_std {
-            writeln!(std_list, "        $mac!({}, {n}, {s});", case.module).ok();
+            writeln!(std_list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         }
         writeln!(
             registry,
@@ -142,7 +167,7 @@ fn main() {
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(
-        "/// Calls `$mac!(module, n, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, n, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n"
+        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n"
     );
     std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
 }

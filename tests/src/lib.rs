@@ -14,7 +14,11 @@ pub enum Spec {
     Urdf(&'static str, &'static str),
     /// `random_chain(seed, dof)` with 30 % prismatic joints.
     Random(u64, usize),
+    /// `random_tree(seed, tree_spec(dof, floating))`.
+    Tree(u64, usize, bool),
 }
+
+include!("tree_spec.rs");
 
 impl Spec {
     /// Loads the robot model.
@@ -37,6 +41,9 @@ impl Spec {
                     prismatic: 0.3,
                 },
             ),
+            Spec::Tree(seed, dof, floating) => {
+                dynamics_model::random::random_tree(seed, tree_spec(dof, floating))
+            }
         }
     }
 }
@@ -50,6 +57,10 @@ pub fn data_dir() -> std::path::PathBuf {
 pub trait GeneratedDynamics: Sync {
     /// n.
     fn dof(&self) -> usize;
+    /// The length of q.
+    fn nq(&self) -> usize;
+    /// The length of ν, ν̇ and τ.
+    fn nv(&self) -> usize;
     /// The joint names.
     fn joint_names(&self) -> Vec<&'static str>;
     /// `M(q)`.
@@ -77,42 +88,48 @@ pub struct Case {
 }
 
 macro_rules! adapter {
-    ($m:ident, $n:literal, $s:ty) => {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
         impl $crate::GeneratedDynamics for $m::Robot {
             fn dof(&self) -> usize {
                 $m::Robot::DOF
+            }
+            fn nq(&self) -> usize {
+                $m::Robot::NQ
+            }
+            fn nv(&self) -> usize {
+                $m::Robot::NV
             }
             fn joint_names(&self) -> Vec<&'static str> {
                 $m::Robot::JOINT_NAMES.to_vec()
             }
             fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
-                let m = $m::Robot::mass_matrix(self, &to_s::<$s, $n>(q));
-                DMatrix::from_fn($n, $n, |i, j| m[(i, j)] as f64)
+                let m = $m::Robot::mass_matrix(self, &to_s::<$s, $nq>(q));
+                DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64)
             }
             fn coriolis(&self, q: &[f64], qd: &[f64]) -> DVector<f64> {
                 to_d($m::Robot::coriolis(
                     self,
-                    &to_s::<$s, $n>(q),
-                    &to_s::<$s, $n>(qd),
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
                 ))
             }
             fn gravity(&self, q: &[f64]) -> DVector<f64> {
-                to_d($m::Robot::gravity(self, &to_s::<$s, $n>(q)))
+                to_d($m::Robot::gravity(self, &to_s::<$s, $nq>(q)))
             }
             fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64> {
                 to_d($m::Robot::inverse_dynamics(
                     self,
-                    &to_s::<$s, $n>(q),
-                    &to_s::<$s, $n>(qd),
-                    &to_s::<$s, $n>(qdd),
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
                 ))
             }
             fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> DVector<f64> {
                 to_d($m::Robot::forward_dynamics(
                     self,
-                    &to_s::<$s, $n>(q),
-                    &to_s::<$s, $n>(qd),
-                    &to_s::<$s, $n>(tau),
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(tau),
                 ))
             }
         }

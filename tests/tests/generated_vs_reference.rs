@@ -1,4 +1,5 @@
-//! Every compiled robot (shipped, reference URDFs, seeded random chains; f64 and f32) against
+//! Every compiled robot (shipped, reference URDFs, seeded random chains and trees with fixed
+//! and floating bases; f64 and f32) against
 //! the reference implementation at seeded random states, for all five functions.
 //!
 //! f64: ‖x − y‖∞ ≤ 1e-10·‖y‖∞ + 1e-12. f32 (inputs rounded to f32 for both): ≤ 1e-4·‖y‖∞ for
@@ -19,8 +20,9 @@ fn generated_code_equals_the_reference_implementation() {
     let mut worst_by_scalar = [[0.0f64; 5]; 2];
     for case in CASES {
         let robot = case.spec.robot();
-        let n = robot.dof();
+        let (n, nq, nv) = (robot.dof(), robot.nq(), robot.nv());
         assert_eq!(case.imp.dof(), n, "{}", case.module);
+        assert_eq!((case.imp.nq(), case.imp.nv()), (nq, nv), "{}", case.module);
         assert_eq!(
             case.imp.joint_names(),
             robot.joint_names(),
@@ -39,9 +41,10 @@ fn generated_code_equals_the_reference_implementation() {
         let g = robot.gravity;
         let zero6 = Vector6::zeros();
         for _ in 0..8 {
-            let q: Vec<f64> = (0..n).map(|_| round(rng.uniform(-3.0, 3.0))).collect();
-            let qd: Vec<f64> = (0..n).map(|_| round(rng.uniform(-2.0, 2.0))).collect();
-            let qdd: Vec<f64> = (0..n).map(|_| round(rng.uniform(-2.0, 2.0))).collect();
+            // On a floating base q[3..7] is a quaternion of any non-zero length.
+            let q: Vec<f64> = (0..nq).map(|_| round(rng.uniform(-3.0, 3.0))).collect();
+            let qd: Vec<f64> = (0..nv).map(|_| round(rng.uniform(-2.0, 2.0))).collect();
+            let qdd: Vec<f64> = (0..nv).map(|_| round(rng.uniform(-2.0, 2.0))).collect();
             let m_ref = dynamics_reference::mass_matrix(&robot, &q);
             let m = case.imp.mass_matrix(&q);
             worst[0] = worst[0].max(check(case, "M", m.as_slice(), m_ref.as_slice(), rtol, atol));

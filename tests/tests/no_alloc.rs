@@ -34,11 +34,11 @@ unsafe impl GlobalAlloc for Counting {
 static GLOBAL: Counting = Counting;
 
 macro_rules! no_alloc {
-    ($m:ident, $n:literal, $s:ty) => {{
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {{
         use dynamics_tests::generated::$m::Robot;
-        let q = SVector::<$s, $n>::from_fn(|i, _| 0.3 + 0.1 * i as $s);
-        let qd = SVector::<$s, $n>::from_fn(|i, _| 0.5 - 0.2 * i as $s);
-        let x = SVector::<$s, $n>::from_fn(|i, _| 0.7 * i as $s - 1.0);
+        let q = SVector::<$s, $nq>::from_fn(|i, _| 0.3 + 0.1 * i as $s);
+        let qd = SVector::<$s, $nv>::from_fn(|i, _| 0.5 - 0.2 * i as $s);
+        let x = SVector::<$s, $nv>::from_fn(|i, _| 0.7 * i as $s - 1.0);
         let before = ALLOCATIONS.load(Ordering::SeqCst);
         for _ in 0..3 {
             black_box(Robot.mass_matrix(black_box(&q)));
