@@ -29,11 +29,11 @@ impl Format {
 /// Options applied while loading.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LoadOptions {
-    /// URDF: the link whose frame is the end-effector frame {n+1} (default: the child link
-    /// of the last movable joint).
+    /// URDF: the link whose frame is the end-effector frame {n+1}, any link of the robot
+    /// (default: the child link of the last movable joint in the joint order).
     pub tip: Option<String>,
     /// URDF: movable joints to turn into fixed ones at the given value (rad or m), so that
-    /// their branches merge into their parents (e.g. gripper fingers).
+    /// their links merge into the body they hang from (e.g. gripper fingers).
     pub lock: Vec<(String, f64)>,
     /// Replaces the description's gravity vector (in {0}, m/s²).
     pub gravity: Option<Vector3<f64>>,

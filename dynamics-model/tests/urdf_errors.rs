@@ -113,26 +113,21 @@ fn movable_mimic_joint_is_refused_fixed_one_is_fine() {
 }
 
 #[test]
-fn movable_branches_name_the_link_and_suggest_lock() {
+fn movable_branches_make_a_tree_and_locks_still_merge_them() {
     // a -j1-> b, then b branches: -ja-> c -jc-> e and -jb-> d.
     let joints = joint("j1", "revolute", "a", "b", "")
         + &joint("ja", "revolute", "b", "c", "")
         + &joint("jc", "revolute", "c", "e", "")
         + &joint("jb", "prismatic", "b", "d", "");
     let text = robot(&["a", "b", "c", "d", "e"], &joints);
-    let m = error_of(&text, "y.urdf", &default());
-    assert_mentions(
-        &m,
-        &[
-            "y.urdf: ",
-            "link `b`",
-            "trees are not supported",
-            "`ja`: ja, jc",
-            "`jb`: jb",
-            "lock jb=0",
-        ],
-    );
-    // Keeping the other branch: lock ja and jc (ja at a quarter turn).
+    let r = load_text(&text, "y.urdf", &default()).expect("a tree");
+    // Depth first, b's children by joint name: ja (then jc below it), jb.
+    assert_eq!(r.joint_names(), ["j1", "ja", "jc", "jb"]);
+    assert_eq!(r.parents(), [None, Some(0), Some(1), Some(0)]);
+    // The tip is the last joint's child, d.
+    assert_eq!(r.end_effector.name, "d");
+    assert_eq!(r.end_effector.parent, Some(3));
+    // Locking one branch merges it into its parent body: lock ja and jc (ja at a quarter turn).
     let lock = LoadOptions {
         lock: vec![
             ("ja".into(), std::f64::consts::FRAC_PI_2),
@@ -142,31 +137,11 @@ fn movable_branches_name_the_link_and_suggest_lock() {
     };
     let r = load_text(&text, "y.urdf", &lock).expect("locked");
     assert_eq!(r.joint_names(), ["j1", "jb"]);
+    assert!(r.is_serial());
     // Body of j1 = b + c + e: 3 kg; c and e turn about z, which moves nothing off the z axis.
     assert!((r.links[0].inertia.mass() - 3.0).abs() < 1e-15);
     // COM of b, c, e in b's frame: z = 0.1, 0.3, 0.5 → mean 0.3.
     assert!((r.links[0].inertia.com() - nalgebra::Vector3::new(0.0, 0.0, 0.3)).amax() < 1e-15);
-}
-
-#[test]
-fn trees_are_refused_at_their_branching_link() {
-    for (file, link, kept) in [
-        ("talos_upper_body.urdf", "torso_2_link", "--lock "),
-        ("solo12.urdf", "base_link", "--lock "),
-        ("g1_29dof.urdf", "pelvis", "--lock "),
-    ] {
-        let text = robot_text(&format!("trees/{file}"));
-        let m = error_of(&text, file, &default());
-        assert_mentions(
-            &m,
-            &[
-                file,
-                &format!("link `{link}`"),
-                "trees are not supported",
-                kept,
-            ],
-        );
-    }
 }
 
 #[test]
@@ -181,21 +156,15 @@ fn lock_of_unknown_joint_lists_the_movable_joints() {
 }
 
 #[test]
-fn tip_not_attached_to_the_last_link() {
+fn tip_is_any_link_and_an_unknown_one_is_refused() {
     let text = robot_text("ur5.urdf");
-    let m = error_of(&text, "ur5.urdf", &tip("wrist_2_link"));
-    assert_mentions(
-        &m,
-        &[
-            "ur5.urdf: ",
-            "`wrist_2_link`",
-            "field `tip`",
-            "moved by joint `wrist_2_joint`",
-            "`wrist_3_joint`",
-        ],
-    );
-    let m = error_of(&text, "ur5.urdf", &tip("base"));
-    assert_mentions(&m, &["`base`", "fixed base"]);
+    // A link before the last joint: the end effector hangs from its body.
+    let r = load_text(&text, "ur5.urdf", &tip("wrist_2_link")).expect("wrist_2_link");
+    assert_eq!(r.end_effector.name, "wrist_2_link");
+    assert_eq!(r.end_effector.parent, Some(4));
+    // The fixed base's root link: attached to the base.
+    let r = load_text(&text, "ur5.urdf", &tip("base_link")).expect("base_link");
+    assert_eq!(r.end_effector.parent, None);
     let m = error_of(&text, "ur5.urdf", &tip("no_such_link"));
     assert_mentions(&m, &["link `no_such_link`", "field `tip`", "tool0"]);
 }

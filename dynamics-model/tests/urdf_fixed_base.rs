@@ -1,6 +1,7 @@
 //! Links welded to the fixed base never move, so their inertias do not enter the dynamics and
 //! are not checked (real files carry meaningless ones there, e.g. Unitree's B1-Z1 or TIAGo's
-//! antennas); the same inertia on a moving link is an error naming that link.
+//! antennas); the same inertia on a moving link, or on the base when it floats, is an error
+//! naming that link.
 
 use dynamics_model::{load::from_str, Format, LoadOptions};
 
@@ -20,6 +21,9 @@ fn an_impossible_inertia_on_the_fixed_base_is_ignored() {
         .expect("the base link's inertia does not matter");
     assert_eq!(robot.dof(), 1);
     assert!((robot.links[0].inertia.mass() - 1.0).abs() < 1e-15);
+    // Kept as the base's inertia, which counts only on a floating base.
+    assert_eq!(robot.base.inertia.mass(), 1e-6);
+    assert!(!robot.base.floating);
 }
 
 #[test]
@@ -44,4 +48,32 @@ fn the_same_inertia_on_a_moving_link_is_an_error_naming_it() {
         msg.contains("inertial.inertia") && msg.contains("triangle"),
         "{msg}"
     );
+}
+
+#[test]
+fn the_same_inertia_on_a_floating_base_is_an_error_naming_it() {
+    let floating = LoadOptions {
+        floating_base: true,
+        ..LoadOptions::default()
+    };
+    let msg = from_str(URDF, Format::Urdf, "float.urdf", &floating)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("float.urdf") && msg.contains("link `base`"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("inertial.inertia") && msg.contains("triangle"),
+        "{msg}"
+    );
+    // A physical inertia on the same base loads, and floats.
+    let fine = URDF.replace(
+        r#"<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="3e-6"/>"#,
+        r#"<inertia ixx="2e-6" ixy="0" ixz="0" iyy="2e-6" iyz="0" izz="3e-6"/>"#,
+    );
+    let robot = from_str(&fine, Format::Urdf, "float.urdf", &floating).expect("floating");
+    assert!(robot.base.floating);
+    assert_eq!(robot.base.name, "base");
+    assert_eq!(robot.base.inertia.mass(), 1e-6);
 }

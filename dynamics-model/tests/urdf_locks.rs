@@ -1,5 +1,5 @@
-//! Locks: every branch point of a tree at once with locks that leave one chain, mimic joints
-//! following a locked leader, and lock values checked against the joint's limits.
+//! Locks: joints frozen at a value (branches of a tree merged into their parent body), mimic
+//! joints following a locked leader, and lock values checked against the joint's limits.
 
 mod urdf_common;
 
@@ -38,7 +38,7 @@ fn locks(pairs: &[(&str, f64)]) -> LoadOptions {
     }
 }
 
-/// The locks of a `--lock A=0,B=0` suggestion: the last one in the first error.
+/// The locks of a `--lock A=0,B=0` suggestion: the last one in the first error line.
 fn suggested(message: &str) -> LoadOptions {
     let first = message.lines().next().expect("a message");
     let list = first.rsplit("--lock ").next().expect("a --lock suggestion");
@@ -88,76 +88,63 @@ fn tiago_like() -> String {
 }
 
 #[test]
-fn every_branch_point_is_reported_at_once() {
+fn a_tree_loads_whole_and_a_free_mimic_finger_is_refused_with_its_lock() {
     let text = tiago_like();
     let m = error_of(&text, "tiago.urdf", &LoadOptions::default());
-    let lines: Vec<&str> = m.lines().collect();
-    assert_eq!(lines.len(), 3, "{m}");
-    assert!(lines[0].contains("link `base`") && lines[0].contains("--lock wheel_l=0,wheel_r=0"));
-    assert!(
-        lines[1].contains("link `torso_link`") && lines[1].contains("--lock head_1=0,head_2=0")
-    );
-    // The fingers' limits exclude 0: the suggestion is the nearest limit.
-    assert!(lines[2].contains("link `gripper`") && lines[2].contains("--lock finger_2=0.01"));
-    // All at once, in the CLI's comma form, in the first error; applying it loads.
-    assert!(
-        lines[0].contains("in one go: --lock wheel_l=0,wheel_r=0,head_1=0,head_2=0,finger_2=0.01"),
-        "{m}"
-    );
-    let r = load_text(&text, "tiago.urdf", &suggested(&m)).expect("one round of locks");
+    // Only the follower is refused; its limits exclude 0, so the suggestion is the nearest one.
+    assert_eq!(m.lines().count(), 1, "{m}");
+    for part in [
+        "tiago.urdf: ",
+        "joint `finger_2`",
+        "field `mimic`",
+        "`--lock finger_2=0.01`",
+        "lock `finger_1`",
+    ] {
+        assert!(m.contains(part), "lacks {part:?}: {m}");
+    }
+    let r = load_text(&text, "tiago.urdf", &suggested(&m)).expect("the suggested lock");
+    // Depth first, children by joint name: base → torso, wheel_l, wheel_r; torso_link →
+    // arm_1, head_1; gripper → finger_1.
     assert_eq!(
         r.joint_names(),
-        ["torso", "arm_1", "arm_2", "arm_3", "finger_1"]
+        [
+            "torso", "arm_1", "arm_2", "arm_3", "finger_1", "head_1", "head_2", "wheel_l",
+            "wheel_r"
+        ]
     );
+    assert_eq!(
+        r.parents(),
+        [
+            None,
+            Some(0),
+            Some(1),
+            Some(2),
+            Some(3),
+            Some(0),
+            Some(5),
+            None,
+            None
+        ]
+    );
+    // Locking the leader locks the follower with it; locking the wheels leaves one branch
+    // fewer at the base.
+    let r = load_text(
+        &text,
+        "tiago.urdf",
+        &locks(&[("finger_1", 0.02), ("wheel_l", 0.0), ("wheel_r", 1.0)]),
+    )
+    .expect("fingers and wheels locked");
+    assert_eq!(
+        r.joint_names(),
+        ["torso", "arm_1", "arm_2", "arm_3", "head_1", "head_2"]
+    );
+    assert_eq!(r.end_effector.name, "h2");
 }
 
 #[test]
-fn suggested_locks_load_the_test_trees_in_one_round() {
-    for (file, dof) in [
-        ("talos_upper_body.urdf", 10),
-        ("solo12.urdf", 3),
-        ("g1_29dof.urdf", 10),
-    ] {
-        let text = robot_text(&format!("trees/{file}"));
-        let m = error_of(&text, file, &LoadOptions::default());
-        let r = load_text(&text, file, &suggested(&m))
-            .unwrap_or_else(|e| panic!("{file} with the suggested locks: {e}\n(after {m})"));
-        assert_eq!(r.dof(), dof, "{file}: {:?}", r.joint_names());
-    }
-}
-
-#[test]
-fn a_suggestion_locks_a_mimic_leader_not_its_followers() {
-    // Two branches at `hand`: the leader's and the follower's; the leader's branch has a
-    // second joint, so it is kept, and the follower is locked on its own.
-    let text = robot(&[
-        ("j1", "revolute", "base", "hand", ""),
-        ("lead", "revolute", "hand", "l1", ""),
-        ("lead_2", "revolute", "l1", "l2", ""),
-        (
-            "follow",
-            "revolute",
-            "hand",
-            "f1",
-            r#"<mimic joint="lead"/>"#,
-        ),
-        ("other", "revolute", "j1_side", "x", ""),
-        ("side", "revolute", "base", "j1_side", ""),
-    ]);
-    let m = error_of(&text, "m.urdf", &LoadOptions::default());
-    // At `base`: keep the j1 branch (4 joints, 3 independent), lock side and other.
-    assert!(
-        m.contains("in one go: --lock side=0,other=0,follow=0"),
-        "{m}"
-    );
-    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("one round");
-    assert_eq!(r.joint_names(), ["j1", "lead", "lead_2"]);
-    // With the follower's branch to lock and the leader in another locked branch, the
-    // follower is left out of the suggestion: locking the leader locks it.
+fn a_mimic_follower_in_its_own_branch_is_refused_until_it_or_its_leader_is_locked() {
     let text = robot(&[
         ("a1", "revolute", "base", "a", ""),
-        ("a2", "revolute", "a", "aa", ""),
-        ("a3", "revolute", "aa", "aaa", ""),
         ("lead", "revolute", "base", "l", ""),
         (
             "follow",
@@ -168,12 +155,11 @@ fn a_suggestion_locks_a_mimic_leader_not_its_followers() {
         ),
     ]);
     let m = error_of(&text, "m.urdf", &LoadOptions::default());
-    assert!(
-        m.contains("--lock lead=0") && !m.contains("follow=0"),
-        "{m}"
-    );
-    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("one round");
-    assert_eq!(r.joint_names(), ["a1", "a2", "a3"]);
+    assert!(m.contains("--lock follow=0") && m.contains("joint `follow`"), "{m}");
+    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("follower locked");
+    assert_eq!(r.joint_names(), ["a1", "lead"]);
+    let r = load_text(&text, "m.urdf", &locks(&[("lead", 0.5)])).expect("leader locked");
+    assert_eq!(r.joint_names(), ["a1"]);
 }
 
 #[test]

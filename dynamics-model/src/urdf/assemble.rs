@@ -1,17 +1,22 @@
-//! The serial chain of a checked URDF tree, in Modern Robotics form.
+//! The kinematic tree of a checked URDF file, in Modern Robotics form.
 //!
-//! Walking the tree from the root, every link gets a body (0 = the fixed base, i = the body
-//! moved by movable joint i) and its pose `T_{b,l}` in that body's frame {i} (= the child
-//! link frame of joint i):
+//! The movable joints, in the order of [`Tree::joint_order`] (depth first, children by joint
+//! name), are joints 1..n. Walking the links in the same order, every link gets a body
+//! (0 = the base, i = the body moved by movable joint i) and its pose `T_{b,l}` in that body's
+//! frame (the base's frame {0} is the root link's, body i's frame {i} is the child link frame
+//! of joint i):
 //!
-//! - through a fixed joint with transform `T_j`: same body, `T_{b,c} = T_{b,p} T_j`;
-//! - through movable joint i: body i, `T_{i,c} = 1`, and `M_{i−1,i} = T_{i−1,p} T_j`.
+//! - the root link: body 0, `T_{0,root} = 1`;
+//! - through a fixed joint with transform `T_j` from link p to link c: c joins p's body,
+//!   `T_{b,c} = T_{b,p} T_j`;
+//! - through movable joint i from link p (in body b) to link c: body i, `T_{i,c} = 1`,
+//!   `λ(i) = b` ([`crate::Link::parent`], `None` for the base) and `M_{λ(i),i} = T_{b,p} T_j`.
 //!
-//! Then `G_i = Σ_{links l of body i} [Ad_{(T_{i,l} T_{l,c})⁻¹}]ᵀ G_c [Ad_{(T_{i,l} T_{l,c})⁻¹}]`
-//! with `T_{l,c}` the `<inertial><origin>` and `G_c = [[I, 0], [0, m·1₃]]`;
-//! `M_{0i} = M_{01} ⋯ M_{i−1,i}`; `S_i = [Ad_{M_{0i}}] (a_i, 0)` (revolute) or
-//! `(0, R_{0i} a_i)` (prismatic) with `a_i` the unit axis in frame {i}; the end effector's
-//! `M_{n,n+1} = T_{n,tip}`.
+//! Then `G_b = Σ_{links l of body b} [Ad_{(T_{b,l} T_{l,c})⁻¹}]ᵀ G_c [Ad_{(T_{b,l} T_{l,c})⁻¹}]`
+//! with `T_{l,c}` the `<inertial><origin>` and `G_c = [[I, 0], [0, m·1₃]]` (for b = 0, the
+//! base's inertia); `M_{0i} = M_{0,λ(i)} M_{λ(i),i}`; `S_i = [Ad_{M_{0i}}] (a_i, 0)` (revolute)
+//! or `(0, R_{0i} a_i)` (prismatic) with `a_i` the unit axis in frame {i}; the end effector at
+//! link t is attached to t's body b with home `T_{b,t}`.
 
 use super::convert::{JointModel, LinkModel};
 use super::tree::Tree;
@@ -21,18 +26,21 @@ use crate::lie::{adjoint, rotation, twist};
 use crate::robot::{Base, EndEffector, Joint, JointKind, Link, Robot, DEFAULT_GRAVITY};
 use nalgebra::{Matrix4, Vector3};
 
-/// Builds the robot from the checked parts. `chain` is the list of movable joints, root to
-/// tip ([`Tree::chain`]); `tip` the end-effector link, if not the last joint's child.
+/// Builds the robot from the checked parts. `movable` lists the movable joints in the
+/// robot's order ([`Tree::joint_order`] without the fixed and locked ones); `tip` is the
+/// end-effector link, if not the last movable joint's child; `floating` says whether the base
+/// floats (then the inertias of its links are checked as a moving body's).
 pub fn robot(
     urdf: &urdf_rs::Robot,
     tree: &Tree,
     joints: &[JointModel],
     links: &[LinkModel],
-    chain: &[usize],
+    movable: &[usize],
     tip: Option<usize>,
+    floating: bool,
 ) -> Result<Robot, Vec<Invalid>> {
-    let n = chain.len();
-    let Some(&last) = chain.last() else {
+    let n = movable.len();
+    let Some(&last) = movable.last() else {
         return Err(vec![Invalid::new(
             Subject::Robot,
             "joint",
@@ -41,97 +49,88 @@ pub fn robot(
         )]);
     };
     let mut body_of_joint = vec![0usize; joints.len()];
-    for (i, &j) in chain.iter().enumerate() {
+    for (i, &j) in movable.iter().enumerate() {
         body_of_joint[j] = i + 1;
     }
-    // body[l], pose[l] = T_{b,l}; home[i] = M_{i,i+1} (0-based i).
+    // body[l] (None: above a floating root joint, not part of the robot), pose[l] = T_{b,l};
+    // parent[i], home[i] = λ(i), M_{λ(i),i} (0-based i, body i + 1).
     let n_links = tree.link_names.len();
-    let mut body = vec![0usize; n_links];
+    let mut body: Vec<Option<usize>> = vec![None; n_links];
     let mut pose = vec![Matrix4::identity(); n_links];
+    let mut parent = vec![None; n];
     let mut home = vec![Matrix4::identity(); n];
+    body[tree.root] = Some(0);
     for l in tree.depth_first() {
-        let Some(j) = tree.parent_joint[l] else {
+        let Some(j) = tree.parent_joint[l].filter(|_| l != tree.root) else {
             continue;
         };
         let p = tree.ends[j].0;
+        let b = body[p].unwrap_or(0); // depth first: the parent link has its body already
         let through = pose[p] * joints[j].transform;
         if joints[j].kind.is_some() {
             let i = body_of_joint[j];
+            parent[i - 1] = b.checked_sub(1);
             home[i - 1] = through;
-            body[l] = i;
+            body[l] = Some(i);
             pose[l] = Matrix4::identity();
         } else {
-            body[l] = body[p];
+            body[l] = Some(b);
             pose[l] = through;
         }
     }
+    let mut base_inertia = SpatialInertia::zero();
     let mut inertia = vec![SpatialInertia::zero(); n];
     let mut errors = Vec::new();
     for l in 0..n_links {
-        let b = body[l];
-        if b == 0 || (links[l].mass == 0.0 && links[l].inertia.amax() == 0.0) {
-            continue; // the fixed base never moves; massless links add nothing
+        let Some(b) = body[l] else { continue };
+        if links[l].mass == 0.0 && links[l].inertia.amax() == 0.0 {
+            continue; // massless links add nothing
         }
         // Each URDF link of a moving body must be a physical rigid body on its own, so that
-        // an error names the link as the file has it (merged bodies would hide it).
-        errors.extend(crate::validate::check_mass_and_inertia(
-            crate::error::Subject::Link {
-                index: None,
-                name: tree.link_names[l].clone(),
-            },
-            "inertial.inertia",
-            links[l].mass,
-            &links[l].inertia,
-        ));
+        // an error names the link as the file has it (merged bodies would hide it). A fixed
+        // base never moves: its links are not checked.
+        if b > 0 || floating {
+            errors.extend(crate::validate::check_mass_and_inertia(
+                Subject::Link {
+                    index: None,
+                    name: tree.link_names[l].clone(),
+                },
+                "inertial.inertia",
+                links[l].mass,
+                &links[l].inertia,
+            ));
+        }
         let t_bc = pose[l] * links[l].com_frame;
-        inertia[b - 1] =
-            inertia[b - 1] + SpatialInertia::from_com_frame(links[l].mass, links[l].inertia, &t_bc);
+        let g = SpatialInertia::from_com_frame(links[l].mass, links[l].inertia, &t_bc);
+        match b {
+            0 => base_inertia = base_inertia + g,
+            b => inertia[b - 1] = inertia[b - 1] + g,
+        }
     }
     if !errors.is_empty() {
         return Err(errors);
     }
     let tip_link = tip.unwrap_or(tree.ends[last].1);
-    if body[tip_link] != n {
-        let b = body[tip_link];
-        let moved_by = match b {
-            0 => "it is on the fixed base, which no joint moves".to_string(),
-            b => format!("it is moved by joint `{}`", urdf.joints[chain[b - 1]].name),
-        };
-        // The movable joints beyond the tip: locking them makes the tip the chain's end.
-        // Body b is moved by chain[b − 1]; chain[b..] lie between the tip and the chain's end.
-        let beyond: Vec<String> = chain
-            .get(b..)
-            .unwrap_or(&[])
-            .iter()
-            .map(|&j| format!("{}=VALUE", urdf.joints[j].name))
-            .collect();
-        let fix = if b == 0 {
-            "choose a tip link attached by fixed joints to the last movable joint's child link"
-                .to_string()
-        } else {
-            format!(
-                "choose a tip link attached by fixed joints to link `{}`, or lock the movable joints after the tip (CLI `--lock`, Builder `.lock`, derive `lock(..)`): {}",
-                tree.link_names[tree.ends[last].1],
-                beyond.join(", ")
-            )
-        };
+    let Some(tip_body) = body[tip_link] else {
         return Err(vec![Invalid::new(
             Subject::EndEffector,
             "tip",
             format!(
-                "link `{}` is not rigidly attached to link `{}`, the child of the last movable joint `{}`: {moved_by}",
-                tree.link_names[tip_link],
-                tree.link_names[tree.ends[last].1],
-                urdf.joints[last].name
+                "link `{}` is the world above the floating root joint, not a link of the robot",
+                tree.link_names[tip_link]
             ),
-            fix,
+            format!(
+                "choose a link of the robot, e.g. the floating base `{}`",
+                tree.link_names[tree.root]
+            ),
         )]);
-    }
-    let mut m0i = Matrix4::identity();
+    };
+    let mut m0: Vec<Matrix4<f64>> = Vec::with_capacity(n);
     let mut out_joints = Vec::with_capacity(n);
     let mut out_links = Vec::with_capacity(n);
-    for (i, &j) in chain.iter().enumerate() {
-        m0i *= home[i];
+    for (i, &j) in movable.iter().enumerate() {
+        let m0i = parent[i].map_or(Matrix4::identity(), |p: usize| m0[p]) * home[i];
+        m0.push(m0i);
         let jm = &joints[j];
         let kind = jm.kind.unwrap_or(JointKind::Revolute);
         let screw = match kind {
@@ -145,7 +144,7 @@ pub fn robot(
         out_joints.push(joint);
         out_links.push(Link {
             name: tree.link_names[tree.ends[j].1].clone(),
-            parent: i.checked_sub(1),
+            parent: parent[i],
             home: home[i],
             inertia: inertia[i],
         });
@@ -159,13 +158,14 @@ pub fn robot(
         source: String::new(),
         base: Base {
             name: tree.link_names[tree.root].clone(),
-            ..Base::fixed()
+            inertia: base_inertia,
+            floating,
         },
         joints: out_joints,
         links: out_links,
         end_effector: EndEffector {
             name: tree.link_names[tip_link].clone(),
-            parent: n.checked_sub(1),
+            parent: tip_body.checked_sub(1),
             home: pose[tip_link],
         },
         gravity: Vector3::from(DEFAULT_GRAVITY),

@@ -35,6 +35,20 @@ pub struct JointModel {
     pub friction: f64,
 }
 
+impl JointModel {
+    /// A fixed joint with the given transform.
+    pub fn fixed(transform: Matrix4<f64>) -> Self {
+        Self {
+            kind: None,
+            transform,
+            axis: Vector3::x(),
+            limits: None,
+            damping: 0.0,
+            friction: 0.0,
+        }
+    }
+}
+
 /// A URDF link's mass properties after checking.
 #[derive(Clone, Debug)]
 pub struct LinkModel {
@@ -76,7 +90,15 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
         T::Fixed => None,
         T::Revolute | T::Continuous => Some(JointKind::Revolute),
         T::Prismatic => Some(JointKind::Prismatic),
-        T::Floating | T::Planar | T::Spherical => {
+        T::Floating => {
+            return Err(vec![Invalid::new(
+                subject(),
+                "type",
+                "a `floating` joint is supported only as the root joint: the only child joint of a root link without inertia (e.g. `world` → floating → `base_link`), which puts the robot on a floating base",
+                "make the joint's parent a root link without <inertial> and with no other child joint, or remove the joint and load the robot with a floating base (CLI `--floating-base`, `LoadOptions::floating_base`)",
+            )]);
+        }
+        T::Planar | T::Spherical => {
             let t = format!("{:?}", j.joint_type).to_lowercase();
             return Err(vec![Invalid::new(
                 subject(),
@@ -90,14 +112,7 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
     let transform = origin_transform(&j.origin);
     let Some(kind) = kind else {
         return if errors.is_empty() {
-            Ok(JointModel {
-                kind: None,
-                transform,
-                axis: Vector3::x(),
-                limits: None,
-                damping: 0.0,
-                friction: 0.0,
-            })
+            Ok(JointModel::fixed(transform))
         } else {
             Err(errors)
         };
@@ -263,8 +278,9 @@ pub fn link(l: &urdf_rs::Link) -> Result<LinkModel, Vec<Invalid>> {
         ));
     }
     // The physical checks (positive semidefinite, triangle inequality) are made when the
-    // link is assembled into a moving body: links on the fixed base never move, and some real
-    // files carry meaningless inertias there (Pinocchio loads them too).
+    // link is assembled into a moving body (a floating base included): links on a fixed base
+    // never move, and some real files carry meaningless inertias there (Pinocchio loads them
+    // too).
     if !errors.is_empty() {
         return Err(errors);
     }

@@ -1,5 +1,5 @@
-//! Locked joints: the values the user gives (checked against the joint's limits), the mimic
-//! joints that follow a locked leader, and the locks suggested when the robot is a tree.
+//! Locked joints: the values the user gives (checked against the joint's limits), and the
+//! mimic joints that follow a locked leader.
 //!
 //! - A lock value must be finite, at most [`MAX_LOCK`] in magnitude, and within the joint's
 //!   `<limit lower upper>` when it has limits (a continuous joint, or `lower = upper = 0`,
@@ -9,15 +9,15 @@
 //!   The derived value is not checked against the follower's limits (it is what the
 //!   mechanism does). A follower also locked explicitly must be locked at that value (to
 //!   1e-9, relative): another value is an error, since the mimic ties the two joints.
-//! - A tree is refused with one error per branch point on the way to the tip, each with the
-//!   locks that remove its other branches, and the whole set at once in the first error,
-//!   written `--lock A=0,B=0` (the value is 0, or the nearest limit when 0 is outside the
-//!   limits; followers of a suggested joint are left out since they follow it).
+//! - A movable joint with `<mimic>` left movable (its leader not locked) is refused
+//!   ([`mimic_errors`]): coupled coordinates are not modelled, and treating it as an
+//!   independent joint would give the wrong dynamics. The error suggests locking it (written
+//!   `--lock A=0`; the value is 0, or the nearest limit when 0 is outside the limits) or its
+//!   leader.
 
 use super::convert::is_one_dof;
-use super::tree::{BranchPoint, Tree};
 use crate::error::{Invalid, Subject};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 /// The largest lock value accepted, in rad or m: larger ones are typing mistakes, and would
 /// lose all precision in the pose.
@@ -212,116 +212,31 @@ fn follow_leaders(
     }
 }
 
-/// The errors of a chain with branch points (`points`, from [`Tree::chain`]) or movable
-/// mimic joints left on it: one per branch point, then one per mimic joint on the chain
-/// (whose leader is not among the suggested locks).
-pub fn structure_errors(
+/// The errors of the movable joints (`movable`, in the robot's order) that mimic another
+/// joint: one per joint, each with the locks that make it fixed.
+pub fn mimic_errors(
     urdf: &urdf_rs::Robot,
-    tree: &Tree,
-    chain: &[usize],
-    points: &[BranchPoint],
+    movable: &[usize],
     mimics: &[Option<Follows>],
 ) -> Vec<Invalid> {
     let name = |j: usize| urdf.joints[j].name.as_str();
-    let suggested: HashSet<usize> = points
-        .iter()
-        .flat_map(|p| {
-            p.branches
-                .iter()
-                .enumerate()
-                .filter(move |(b, _)| *b != p.keep)
-                .flat_map(|(_, (_, m))| m.iter().copied())
-        })
-        .collect();
-    // A follower whose leader (or leader's leader…) is locked is locked with it.
-    let follows_suggested = |f: usize| {
-        let mut j = f;
-        for _ in 0..mimics.len() {
-            match mimics[j].as_ref().and_then(|m| m.leader) {
-                Some(l) if suggested.contains(&l) => return true,
-                Some(l) => j = l,
-                None => return false,
-            }
-        }
-        false
-    };
     let lock_of = |j: usize| format!("{}={}", name(j), rest(&urdf.joints[j]));
-    let mut all_locks = Vec::new();
-    let mut errors = Vec::new();
-    for p in points {
-        let locks: Vec<String> = p
-            .branches
-            .iter()
-            .enumerate()
-            .filter(|(b, _)| *b != p.keep)
-            .flat_map(|(_, (_, m))| m.iter().copied())
-            .filter(|&j| !follows_suggested(j))
-            .map(lock_of)
-            .collect();
-        all_locks.extend(locks.iter().cloned());
-        let list: Vec<String> = p
-            .branches
-            .iter()
-            .map(|(j, m)| {
-                let names: Vec<&str> = m.iter().map(|&k| name(k)).collect();
-                format!("through `{}`: {}", name(*j), names.join(", "))
-            })
-            .collect();
-        errors.push(Invalid::new(
-            Subject::Link {
-                index: None,
-                name: tree.link_names[p.link].clone(),
-            },
-            "children",
-            format!(
-                "the robot branches at link `{}` into {} branches with movable joints ({}); trees are not supported yet, only serial chains",
-                tree.link_names[p.link],
-                p.branches.len(),
-                list.join("; ")
-            ),
-            format!(
-                "keep one branch and lock the joints of the others at a value (CLI `--lock JOINT=VALUE,JOINT=VALUE`, Builder `.lock(JOINT, VALUE)`, derive `lock(JOINT = VALUE)`), e.g. to keep the branch through `{}`: {}",
-                name(p.branches[p.keep].0),
-                if locks.is_empty() {
-                    "nothing more to lock (the other branches follow locked joints)".to_string()
-                } else {
-                    format!("--lock {}", locks.join(","))
-                }
-            ),
-        ));
-    }
-    let n_points = errors.len();
-    for &f in chain {
-        let Some(m) = &mimics[f] else { continue };
-        if follows_suggested(f) {
-            continue;
-        }
-        all_locks.push(lock_of(f));
-        let leader = &m.leader_name;
-        errors.push(Invalid::new(
-            subject(name(f)),
-            "mimic",
-            format!(
-                "a movable joint that mimics joint `{leader}` is not supported (it is not an independent joint)"
-            ),
-            format!(
-                "lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), e.g. `--lock {1}`, or lock `{leader}` (which locks it too), or make it fixed",
-                name(f),
-                lock_of(f)
-            ),
-        ));
-    }
-    let with_mimics = errors.len() > n_points;
-    if n_points > 1 || (n_points == 1 && with_mimics) {
-        errors[0].fix += &format!(
-            "; to keep the chain this tool picked through all {n_points} branch point(s){}, in one go: --lock {}",
-            if with_mimics {
-                " and lock the mimic joints on it"
-            } else {
-                ""
-            },
-            all_locks.join(",")
-        );
-    }
-    errors
+    movable
+        .iter()
+        .filter_map(|&f| {
+            let leader = &mimics[f].as_ref()?.leader_name;
+            Some(Invalid::new(
+                subject(name(f)),
+                "mimic",
+                format!(
+                    "a movable joint that mimics joint `{leader}` is not supported (it is not an independent joint)"
+                ),
+                format!(
+                    "lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), e.g. `--lock {1}`, or lock `{leader}` (which locks it too), or make it fixed",
+                    name(f),
+                    lock_of(f)
+                ),
+            ))
+        })
+        .collect()
 }

@@ -3,21 +3,41 @@
 //!
 //! # What comes out
 //!
-//! - The movable joints (revolute, continuous, prismatic) from the root to the tip. The space
-//!   frame {0} is the URDF root link's frame; frame {i} is the child link frame of movable
-//!   joint i.
-//! - `M_{i−1,i}` ([`crate::Link::home`]) is joint i's `<origin>` (`R = Rz(yaw) Ry(pitch)
-//!   Rx(roll)`, right angles exact, see [`origin`]) with the fixed joints between joint i−1's
-//!   child link and joint i folded in.
+//! - A kinematic tree. The movable joints (revolute, continuous, prismatic) are listed depth
+//!   first from the root link, the child joints of a link visited in byte-wise order of their
+//!   names, fixed joints traversed but not listed: the order of urdfdom and Pinocchio
+//!   (`model.names`, `model.parents`). A serial chain comes out root to tip as before.
+//! - Each movable joint's child link is a body, link i. Links welded to it by fixed joints
+//!   (flanges, hands, sensors, feet) merge into it. The space frame {0} is the frame of the
+//!   URDF root link, which is the base ([`crate::Base`], named after it) together with the
+//!   links welded to it; frame {i} is the child link frame of movable joint i.
+//! - `λ(i)` ([`crate::Link::parent`]) is the body that joint i's parent link belongs to
+//!   (`None` for the base), always an earlier one.
+//! - `M_{λ(i),i}` ([`crate::Link::home`]) is joint i's `<origin>` (`R = Rz(yaw) Ry(pitch)
+//!   Rx(roll)`, right angles exact, see [`origin`]) with the fixed joints between body λ(i)'s
+//!   link and joint i folded in.
 //! - `G_i` ([`crate::Link::inertia`]) is the spatial inertia, in {i}, of link i and of every
-//!   link welded to it by fixed joints (fixed-only side branches: flanges, hands, sensors).
-//!   Mass on the fixed base (links before the first movable joint) is ignored.
+//!   link welded to it. The base's inertia ([`crate::Base::inertia`], in {0}) is that of the
+//!   root link and the links welded to it; it counts only when the base floats.
 //! - `S_i = [Ad_{M_{0i}}] (a_i, 0)` for a revolute or continuous joint, `(0, R_{0i} a_i)` for a
 //!   prismatic one, with `a_i` the unit `<axis>` (default `(1, 0, 0)`).
-//! - The end effector {n+1} is the child link of the last movable joint, or
-//!   [`LoadOptions::tip`], a link welded to it.
+//! - The end effector {n+1} is [`LoadOptions::tip`] (any link of the robot; it is attached to
+//!   that link's body, [`crate::EndEffector::parent`], `None` for the base), by default the
+//!   child link of the last movable joint in the order above.
 //! - Continuous joints are unlimited revolute joints; limits with lower = upper = 0 are none.
 //!   `<dynamics damping friction>` is kept on the [`crate::Joint`]. Gravity is `(0, 0, −9.81)`.
+//!
+//! # Floating base
+//!
+//! The base floats ([`crate::Base::floating`]) when [`LoadOptions::floating_base`] asks for it
+//! (the root link is then the floating base), or when the file says so itself: a root link
+//! without inertia (no `<inertial>`, or mass and inertia zero) whose only child joint has type
+//! `floating`, as in `world` → `floating` → `base_link`. The robot is then the subtree of
+//! that joint's child link, which is the base: {0} is the child link's frame, and the floating
+//! joint's `<origin>` is ignored (a free joint can put the base anywhere; q = 0 puts it at
+//! the world origin). The world link is not part of the robot (it cannot be the `tip`).
+//! On a floating base the inertias of the base's links are checked like those of any moving
+//! body.
 //!
 //! # What is read, what is skipped
 //!
@@ -32,10 +52,11 @@
 //! # Locks
 //!
 //! [`LoadOptions::lock`] (`--lock JOINT=VALUE`) turns movable joints into fixed ones at a
-//! value (see the `locks` module): the value must be finite, at most 1e6 in magnitude and within the
-//! joint's `<limit lower upper>` (continuous joints have none). Locking a joint also locks
-//! the movable joints that `<mimic>` it, at `multiplier·value + offset`; a follower locked
-//! explicitly too must be locked at that same value.
+//! value (see the `locks` module), e.g. to freeze gripper fingers: their links then merge
+//! into the body they hang from. The value must be finite, at most 1e6 in magnitude and
+//! within the joint's `<limit lower upper>` (continuous joints have none). Locking a joint
+//! also locks the movable joints that `<mimic>` it, at `multiplier·value + offset`; a follower
+//! locked explicitly too must be locked at that same value.
 //!
 //! # What is refused, by name
 //!
@@ -44,14 +65,13 @@
 //! `<mass>` or `<inertia>`, a joint's `name`, `type`, `<parent>`, `<child>`, an `<axis>`
 //! without `xyz`, `<limit>` without `velocity` before URDF 1.2, `<mimic>` without `joint`);
 //! numbers that do not parse or are not finite; unknown links, links with two parents and
-//! closed loops, several roots; `floating`/`planar` joints; movable joints with `<mimic>`
-//! whose leader is not locked; negative masses and physically impossible inertias (checked
-//! per URDF link); zero axes; lock values that are not finite, absurd or outside the joint's
-//! limits (blamed on the lock, not on the file); and trees: two or more branches with
-//! movable joints. A tree is refused with one error per branch point on the chain this
-//! loader would keep, each with the locks that remove its other branches, and all of them
-//! (with the mimic joints left on the chain) in the first error, in the form
-//! `--lock A=0,B=0` (CLI), [`LoadOptions::lock`] for the Builder and derive.
+//! closed loops, several roots; `planar` joints, and `floating` joints anywhere but as the
+//! floating root joint above; a robot without movable joints; movable joints with `<mimic>`
+//! whose leader is not locked (coupled coordinates are not modelled: the error suggests the
+//! lock, `--lock A=0` on the CLI, [`LoadOptions::lock`] for the Builder and derive); negative
+//! masses and physically impossible inertias (checked per URDF link, on moving bodies and on a
+//! floating base); zero axes; lock values that are not finite, absurd or outside the joint's
+//! limits (blamed on the lock, not on the file); a `tip` that names no link of the robot.
 
 mod assemble;
 mod convert;
@@ -79,7 +99,8 @@ pub fn from_str(text: &str, file: &str, options: &LoadOptions) -> Result<Robot, 
 
 /// The parsed URDF to a robot; every error found on the way, without the file name.
 fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, Vec<Invalid>> {
-    let tree = tree::Tree::new(urdf)?;
+    let mut tree = tree::Tree::new(urdf)?;
+    let floating_root = tree.floating_root(urdf);
     let mimics = locks::mimics(urdf);
     let locks = locks::resolve(urdf, &options.lock, &mimics)?;
     let mut errors = Vec::new();
@@ -87,7 +108,11 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         .joints
         .iter()
         .enumerate()
-        .map(|(ji, j)| convert::joint(j, locks.get(&ji).copied()))
+        .map(|(ji, j)| match floating_root {
+            // Above the base: never walked, its origin is not used.
+            Some(f) if f == ji => Ok(convert::JointModel::fixed(nalgebra::Matrix4::identity())),
+            _ => convert::joint(j, locks.get(&ji).copied()),
+        })
         .filter_map(|r| r.map_err(|e| errors.extend(e)).ok())
         .collect();
     let links: Vec<_> = urdf
@@ -117,14 +142,15 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
     if !errors.is_empty() {
         return Err(errors);
     }
-    let movable: Vec<bool> = joints.iter().map(|j| j.kind.is_some()).collect();
-    let independent: Vec<bool> = (0..movable.len())
-        .map(|j| movable[j] && mimics[j].is_none())
+    let movable: Vec<usize> = tree
+        .joint_order()
+        .into_iter()
+        .filter(|&j| joints[j].kind.is_some())
         .collect();
-    let (chain, branch_points) = tree.chain(&movable, &independent, tip);
-    let errors = locks::structure_errors(urdf, &tree, &chain, &branch_points, &mimics);
+    let errors = locks::mimic_errors(urdf, &movable, &mimics);
     if !errors.is_empty() {
         return Err(errors);
     }
-    assemble::robot(urdf, &tree, &joints, &links, &chain, tip)
+    let floating = options.floating_base || floating_root.is_some();
+    assemble::robot(urdf, &tree, &joints, &links, &movable, tip, floating)
 }

@@ -1,11 +1,15 @@
-//! The kinematic tree of a URDF file: links joined by joints, its root, and the serial chain
-//! of movable joints in it.
+//! The kinematic tree of a URDF file: links joined by joints, its root, the order of its
+//! joints, and the floating root joint.
 //!
-//! Every link but the root has exactly one parent joint; the root has none. The chain is the
-//! path from the root to the last movable joint. Side branches that hold only fixed joints
-//! (tool flanges, hands, sensors) are welded to the body they hang from; two or more
-//! branches that hold movable joints make a tree, which is not supported yet: [`Tree::chain`]
-//! finds every branch point on the way to the tip, so that one error can name them all.
+//! - Every link but the root has exactly one parent joint; the root has none. Anything else
+//!   (a link with two parents, a closed loop, several roots) is refused here.
+//! - The order is urdfdom's, which Pinocchio (and so `model.parents`) follows: depth first
+//!   from the root link, the child joints of a link visited in byte-wise order of their
+//!   names (urdfdom keeps them in a `std::map`). Fixed joints are traversed like the others;
+//!   the caller lists only the movable ones.
+//! - A root link without mass (no `<inertial>`, or a zero one) whose only child joint is of
+//!   type `floating` (`world` → floating → `base_link`) stands for the world: the robot is
+//!   the subtree of that joint's child link, on a floating base ([`Tree::floating_root`]).
 
 use crate::error::{Invalid, Subject};
 use std::collections::HashMap;
@@ -19,9 +23,10 @@ pub struct Tree {
     pub ends: Vec<(usize, usize)>,
     /// For each link: its parent joint, `None` for the root.
     pub parent_joint: Vec<Option<usize>>,
-    /// For each link: its child joints, in file order.
+    /// For each link: its child joints, in byte-wise order of their names.
     pub child_joints: Vec<Vec<usize>>,
-    /// The root link.
+    /// The root link: the file's root, or the child of a floating root joint once
+    /// [`Tree::floating_root`] has moved it there.
     pub root: usize,
 }
 
@@ -112,6 +117,10 @@ impl Tree {
         if !errors.is_empty() {
             return Err(errors);
         }
+        // urdfdom's order: child joints by name, byte-wise (names are unique here).
+        for children in &mut child_joints {
+            children.sort_by(|&a, &b| robot.joints[a].name.cmp(&robot.joints[b].name));
+        }
         let roots: Vec<usize> = (0..n_links)
             .filter(|&l| parent_joint[l].is_none())
             .collect();
@@ -182,7 +191,28 @@ impl Tree {
         Ok(tree)
     }
 
-    /// The links reachable from the root, parents before children, children in file order.
+    /// The floating root joint, if the file has one: the root link has no mass and no
+    /// rotational inertia, and its only child joint has type `floating`. The root then moves
+    /// to that joint's child link, whose frame is the base frame (the joint's `<origin>` is
+    /// ignored: a free joint can put the base anywhere). Returns the joint's index.
+    pub fn floating_root(&mut self, robot: &urdf_rs::Robot) -> Option<usize> {
+        let inertial = &robot.links[self.root].inertial;
+        let i = &inertial.inertia;
+        let massless = inertial.mass.value == 0.0
+            && [i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz]
+                .iter()
+                .all(|&x| x == 0.0);
+        match self.child_joints[self.root].as_slice() {
+            &[j] if massless && robot.joints[j].joint_type == urdf_rs::JointType::Floating => {
+                self.root = self.ends[j].1;
+                Some(j)
+            }
+            _ => None,
+        }
+    }
+
+    /// The links reachable from the root, parents before children, children in the order of
+    /// their joints' names.
     pub fn depth_first(&self) -> Vec<usize> {
         let mut out = Vec::with_capacity(self.link_names.len());
         let mut stack = vec![self.root];
@@ -195,104 +225,13 @@ impl Tree {
         out
     }
 
-    /// The movable joints of the subtree below joint `j` (itself included), depth first.
-    fn movable_below(&self, j: usize, movable: &[bool]) -> Vec<usize> {
-        let mut out = Vec::new();
-        let mut stack = vec![j];
-        while let Some(j) = stack.pop() {
-            if movable[j] {
-                out.push(j);
-            }
-            for &c in self.child_joints[self.ends[j].1].iter().rev() {
-                stack.push(c);
-            }
-        }
-        out
+    /// The joints below the root in the same order (each joint is its child link's parent
+    /// joint): urdfdom's and Pinocchio's order once the fixed ones are left out.
+    pub fn joint_order(&self) -> Vec<usize> {
+        self.depth_first()
+            .into_iter()
+            .filter(|&l| l != self.root)
+            .filter_map(|l| self.parent_joint[l])
+            .collect()
     }
-
-    /// The serial chain through the tree and the branch points on it.
-    ///
-    /// Walking from the root, at every link with two or more child branches holding movable
-    /// joints (`movable[j]` per joint) one branch is kept: the one holding `keep_link`, if
-    /// given, else the one with the most `independent` joints (the first on a tie). The
-    /// chain is the movable joints of the kept branches, root to tip; it is the robot's chain
-    /// when there are no branch points, and what is left once the joints of the other
-    /// branches are locked.
-    pub fn chain(
-        &self,
-        movable: &[bool],
-        independent: &[bool],
-        keep_link: Option<usize>,
-    ) -> (Vec<usize>, Vec<BranchPoint>) {
-        let mut chain = Vec::new();
-        let mut points = Vec::new();
-        let mut link = self.root;
-        loop {
-            let branches: Vec<(usize, Vec<usize>)> = self.child_joints[link]
-                .iter()
-                .map(|&j| (j, self.movable_below(j, movable)))
-                .filter(|(_, m)| !m.is_empty())
-                .collect();
-            let keep = match branches.len() {
-                0 => return (chain, points),
-                1 => 0,
-                _ => self.branch_to_keep(link, &branches, independent, keep_link),
-            };
-            let j = branches[keep].0;
-            if movable[j] {
-                chain.push(j);
-            }
-            if branches.len() > 1 {
-                points.push(BranchPoint {
-                    link,
-                    branches,
-                    keep,
-                });
-            }
-            link = self.ends[j].1;
-        }
-    }
-
-    /// The branch holding `keep_link`, else the one with the most independent joints.
-    fn branch_to_keep(
-        &self,
-        link: usize,
-        branches: &[(usize, Vec<usize>)],
-        independent: &[bool],
-        keep_link: Option<usize>,
-    ) -> usize {
-        let in_branch = |first: usize, l: usize| -> bool {
-            // Walk up from l to `link`; the branch is the child joint we arrive through.
-            let mut l = l;
-            while let Some(j) = self.parent_joint[l] {
-                let parent = self.ends[j].0;
-                if parent == link {
-                    return j == first;
-                }
-                l = parent;
-            }
-            false
-        };
-        keep_link
-            .and_then(|t| branches.iter().position(|(j, _)| in_branch(*j, t)))
-            .unwrap_or_else(|| {
-                let count = |m: &Vec<usize>| m.iter().filter(|&&k| independent[k]).count();
-                let most = branches.iter().map(|(_, m)| count(m)).max().unwrap_or(0);
-                branches
-                    .iter()
-                    .position(|(_, m)| count(m) == most)
-                    .unwrap_or(0)
-            })
-    }
-}
-
-/// A link where the tree branches into several branches with movable joints.
-#[derive(Debug)]
-pub struct BranchPoint {
-    /// The link.
-    pub link: usize,
-    /// Each branch: its first joint and its movable joints, depth first.
-    pub branches: Vec<(usize, Vec<usize>)>,
-    /// The index in `branches` of the branch the chain goes on through.
-    pub keep: usize,
 }
