@@ -37,6 +37,13 @@ pub const RANDOM: &[(u64, usize)] = &[
     (116, 12),
 ];
 
+/// The URDF trees of `data/robots/trees` with Pinocchio's numbers: (name, floating base).
+pub const URDF_TREES: &[(&str, bool)] = &[
+    ("talos_upper_body", false),
+    ("solo12", true),
+    ("g1_29dof", true),
+];
+
 /// The random trees compiled as Rust: (seed, bodies, floating base).
 pub const TREES: &[(u64, usize, bool)] = &[
     (201, 4, false),
@@ -102,6 +109,21 @@ fn main() {
             robot,
             scalar,
             no_std: k % 4 == 1,
+        });
+    }
+    for (name, floating) in URDF_TREES {
+        let path = data.join(format!("trees/{name}.urdf"));
+        let options = LoadOptions {
+            floating_base: *floating,
+            ..Default::default()
+        };
+        let robot = dynamics_model::load_file(&path, &options).expect("tree URDF loads");
+        cases.push(Case {
+            module: format!("tree_{name}"),
+            spec: format!("Spec::UrdfTree({name:?}, {floating})"),
+            robot,
+            scalar: Scalar::F64,
+            no_std: false,
         });
     }
     for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {

@@ -16,6 +16,8 @@ pub enum Spec {
     Random(u64, usize),
     /// `random_tree(seed, tree_spec(dof, floating))`.
     Tree(u64, usize, bool),
+    /// `tests/data/robots/trees/<name>.urdf`, with or without a floating base.
+    UrdfTree(&'static str, bool),
 }
 
 include!("tree_spec.rs");
@@ -41,6 +43,14 @@ impl Spec {
                     prismatic: 0.3,
                 },
             ),
+            Spec::UrdfTree(name, floating) => {
+                let path = data_dir().join(format!("robots/trees/{name}.urdf"));
+                let options = LoadOptions {
+                    floating_base: floating,
+                    ..Default::default()
+                };
+                dynamics_model::load_file(&path, &options).unwrap_or_else(|e| panic!("{e}"))
+            }
             Spec::Tree(seed, dof, floating) => {
                 dynamics_model::random::random_tree(seed, tree_spec(dof, floating))
             }

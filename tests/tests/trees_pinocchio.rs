@@ -1,0 +1,108 @@
+//! The generated code of three kinematic trees against Pinocchio 4.1.0
+//! (`data/reference/trees/`, see its README): the TALOS upper body on a fixed pelvis (three
+//! branches), the Solo-12 quadruped and the Unitree G1 humanoid (29 joints) on a free-flyer
+//! base. Every sample: M, c, g, nle = c + g, τ = rnea(q, v, a), and forward dynamics at
+//! `tau_rand` (a wrench on the base included), ‖x − y‖∞ ≤ 1e-9·‖y‖∞ + 1e-12.
+//!
+//! Pinocchio's free flyer orders the base velocity and wrench linear part first
+//! (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`); ours angular first. [`pin`] maps the indices.
+
+use dynamics_tests::{data_dir, Spec, CASES};
+use serde_json::Value;
+
+fn json(name: &str) -> Value {
+    let path = data_dir().join(format!("reference/trees/{name}.json"));
+    let text = std::fs::read_to_string(&path).expect("reference data");
+    serde_json::from_str(&text).expect("json")
+}
+
+fn vecf(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+/// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
+fn pin(k: usize, floating: bool) -> usize {
+    match k {
+        0..=2 if floating => k + 3,
+        3..=5 if floating => k - 3,
+        _ => k,
+    }
+}
+
+/// A Pinocchio vector in our order.
+fn ours(v: &Value, floating: bool) -> Vec<f64> {
+    let x = vecf(v);
+    (0..x.len()).map(|k| x[pin(k, floating)]).collect()
+}
+
+#[test]
+fn generated_trees_reproduce_pinocchio() {
+    let mut count = 0;
+    for case in CASES {
+        let Spec::UrdfTree(name, floating) = case.spec else {
+            continue;
+        };
+        let data = json(name);
+        assert_eq!(data["floating"].as_bool(), Some(floating), "{name}");
+        let robot = case.spec.robot();
+        let mut names: Vec<&str> = data["joint_names"]
+            .as_array()
+            .expect("names")
+            .iter()
+            .map(|x| x.as_str().expect("name"))
+            .collect();
+        if floating {
+            assert_eq!(names.remove(0), "root_joint");
+        }
+        assert_eq!(case.imp.joint_names(), names, "{name}: joint order");
+        let nv = robot.nv();
+        assert_eq!(data["nv"].as_u64(), Some(nv as u64), "{name}");
+        let mut worst = [0.0f64; 6];
+        for (k, s) in data["samples"]
+            .as_array()
+            .expect("samples")
+            .iter()
+            .enumerate()
+        {
+            let q = vecf(&s["q"]);
+            let v = ours(&s["v"], floating);
+            let a = ours(&s["a"], floating);
+            let what = |w: &str| format!("{name} sample {k}: {w}");
+            let check = |w: &str, x: &[f64], y: &[f64]| {
+                let (err, scale) = dynamics_tests::assert_close(&what(w), x, y, 1e-9, 1e-12);
+                err / scale.max(1e-300)
+            };
+            let m = case.imp.mass_matrix(&q);
+            let rows = s["M"].as_array().expect("M");
+            let m_pin: Vec<f64> = (0..nv * nv)
+                .map(|e| {
+                    let (i, j) = (pin(e / nv, floating), pin(e % nv, floating));
+                    rows[i][j].as_f64().expect("number")
+                })
+                .collect();
+            let m_ours: Vec<f64> = (0..nv * nv).map(|e| m[(e / nv, e % nv)]).collect();
+            worst[0] = worst[0].max(check("M", &m_ours, &m_pin));
+            let c = case.imp.coriolis(&q, &v);
+            worst[1] = worst[1].max(check("c", c.as_slice(), &ours(&s["c"], floating)));
+            let g = case.imp.gravity(&q);
+            worst[2] = worst[2].max(check("g", g.as_slice(), &ours(&s["g"], floating)));
+            let nle: Vec<f64> = c.iter().zip(g.iter()).map(|(x, y)| x + y).collect();
+            worst[3] = worst[3].max(check("nle", &nle, &ours(&s["nle"], floating)));
+            let tau = case.imp.inverse_dynamics(&q, &v, &a);
+            worst[4] = worst[4].max(check("τ", tau.as_slice(), &ours(&s["tau"], floating)));
+            let tau_rand = ours(&s["tau_rand"], floating);
+            let fd = case.imp.forward_dynamics(&q, &v, &tau_rand);
+            worst[5] = worst[5].max(check("a_fd", fd.as_slice(), &ours(&s["a_fd"], floating)));
+            // Structural zeros are exact zeros.
+            let zeros = m_ours.iter().filter(|x| **x == 0.0).count();
+            assert!(zeros as u64 >= s["M_structural_zero_count"].as_u64().expect("count"));
+        }
+        println!("{name}: worst relative errors (M, c, g, nle, τ, ν̇) {worst:?}");
+        count += 1;
+    }
+    assert_eq!(count, 3, "the three trees are compiled");
+}
