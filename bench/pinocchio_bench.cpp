@@ -74,9 +74,11 @@ int main(int argc, char ** argv)
   {
     pinocchio::Model model;
     model.loadFromBinary(rp.second);
-    if (model.nq != model.nv)
+    // 1-dof joints only, after an optional free flyer (joint 1: position, quaternion).
+    const bool free_flyer = model.njoints > 1 && model.joints[1].shortname() == "JointModelFreeFlyer";
+    if (model.nq != model.nv + (free_flyer ? 1 : 0))
     {
-      std::fprintf(stderr, "%s: only revolute/prismatic joints are supported\n", rp.first.c_str());
+      std::fprintf(stderr, "%s: only revolute/prismatic joints (and a free-flyer root) are supported\n", rp.first.c_str());
       return 2;
     }
     pinocchio::Data data(model);
@@ -86,6 +88,8 @@ int main(int argc, char ** argv)
     for (int k = 0; k < K; ++k)
     {
       q[k] = VectorXd::NullaryExpr(model.nq, [&]() { return ang(gen); });
+      if (free_flyer)
+        q[k].segment<4>(3).normalize(); // a unit quaternion (x, y, z, w)
       v[k] = VectorXd::NullaryExpr(model.nv, [&]() { return u(gen); });
       a[k] = VectorXd::NullaryExpr(model.nv, [&]() { return u(gen); });
       tau[k] = VectorXd::NullaryExpr(model.nv, [&]() { return 5.0 * u(gen); });

@@ -3,7 +3,8 @@
 # --bench dynamics`, back to back, then a side-by-side table.  See bench/README.md.
 #   bash bench/run.sh
 #   ROBOTS="ur5" CALLS=20000 REPS=3 CRITERION_ARGS="--warm-up-time 0.2 --measurement-time 0.5" bash bench/run.sh
-# Environment: ROBOTS (default "ur5 panda rand7 double_pendulum"), CALLS (100000), REPS (5),
+# Environment: ROBOTS (default "ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff";
+# NAME+ff puts the URDF on a free-flyer base), CALLS (100000), REPS (5),
 # CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR.
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
@@ -12,7 +13,7 @@ ROOT=$(cd "$HERE/.." && pwd)
 CACHE=${XDG_CACHE_HOME:-$HOME/.cache}/dynamics-gen-bench
 VENV=$CACHE/venv
 BIN=$CACHE/pinocchio_bench
-ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum"}
+ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff"}
 CALLS=${CALLS:-100000}
 REPS=${REPS:-5}
 mkdir -p "$CACHE/models"
@@ -34,12 +35,18 @@ if [ ! -x "$BIN" ] || [ "$HERE/pinocchio_bench.cpp" -nt "$BIN" ]; then
   mv "$BIN.tmp" "$BIN"
 fi
 ARGS=()
+NAMES=()
 for r in $ROBOTS; do
-  u=$ROOT/tests/data/robots/$r.urdf
-  [ -f "$u" ] || { echo "no URDF $u" >&2; exit 1; }
-  "$VENV/bin/python" -c 'import sys, pinocchio as pin; pin.buildModelFromUrdf(sys.argv[1]).saveToBinary(sys.argv[2])' \
-    "$u" "$CACHE/models/$r.bin"
-  ARGS+=("$r=$CACHE/models/$r.bin")
+  # NAME+ff: the URDF on a free-flyer base; URDFs in tests/data/robots or its trees/.
+  name=${r%+ff}; ff=0; [ "$name" != "$r" ] && ff=1
+  u=$ROOT/tests/data/robots/$name.urdf
+  [ -f "$u" ] || u=$ROOT/tests/data/robots/trees/$name.urdf
+  [ -f "$u" ] || { echo "no URDF for $name in tests/data/robots or tests/data/robots/trees" >&2; exit 1; }
+  "$VENV/bin/python" -c 'import sys, pinocchio as pin
+m = pin.buildModelFromUrdf(sys.argv[1], pin.JointModelFreeFlyer()) if sys.argv[3] == "1" else pin.buildModelFromUrdf(sys.argv[1])
+m.saveToBinary(sys.argv[2])' "$u" "$CACHE/models/$name.bin" "$ff"
+  ARGS+=("$name=$CACHE/models/$name.bin")
+  NAMES+=("$name")
 done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
 echo "# robot           nv algo     median_ns     min_ns"
@@ -48,7 +55,7 @@ echo "# robot           nv algo     median_ns     min_ns"
 
 # 2. Our generated code, right after (criterion filter: the same robots).
 START=$(date +%s)
-FILTER="^($(echo $ROBOTS | tr ' ' '|'))/"
+FILTER="^($(echo "${NAMES[@]}" | tr ' ' '|'))/"
 (cd "$ROOT" && cargo bench -p dynamics-tests --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
 
 # 3. Side by side: criterion medians of this run only (estimates.json newer than START).

@@ -11,12 +11,13 @@ use nalgebra::{SVector, Vector6};
 use std::hint::black_box;
 
 macro_rules! bench_robot {
-    ($c:expr, $label:literal, $m:ident, $n:literal, $robot:expr) => {{
+    ($c:expr, $label:literal, $m:ident, $nq:literal, $nv:literal, $robot:expr) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
         let robot = $robot;
-        let q = SVector::<f64, $n>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
-        let qd = SVector::<f64, $n>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
-        let qdd = SVector::<f64, $n>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
+        // (On a floating base q[3..7] is a quaternion: normalised inside, any length goes.)
+        let q = SVector::<f64, $nq>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
+        let qd = SVector::<f64, $nv>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
+        let qdd = SVector::<f64, $nv>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
         let tau = Gen.inverse_dynamics(&q, &qd, &qdd);
         let (qs, qds, qdds, taus) = (q.as_slice(), qd.as_slice(), qdd.as_slice(), tau.as_slice());
         let g = robot.gravity;
@@ -77,9 +78,28 @@ fn benches(c: &mut Criterion) {
         };
         dynamics_model::load_file(&data.join(format!("{name}.urdf")), &options).expect("loads")
     };
-    bench_robot!(c, "ur5", urdf_ur5, 6, load("ur5", "tool0"));
-    bench_robot!(c, "panda", urdf_panda, 7, load("panda", "panda_hand_tcp"));
-    bench_robot!(c, "rand7", urdf_rand7, 7, load("rand7", "ee_link"));
+    bench_robot!(c, "ur5", urdf_ur5, 6, 6, load("ur5", "tool0"));
+    bench_robot!(
+        c,
+        "panda",
+        urdf_panda,
+        7,
+        7,
+        load("panda", "panda_hand_tcp")
+    );
+    bench_robot!(c, "rand7", urdf_rand7, 7, 7, load("rand7", "ee_link"));
+    let tree = |name: &str, floating: bool| {
+        let options = LoadOptions {
+            floating_base: floating,
+            ..Default::default()
+        };
+        let path = data.join(format!("trees/{name}.urdf"));
+        dynamics_model::load_file(&path, &options).expect("loads")
+    };
+    let talos = tree("talos_upper_body", false);
+    bench_robot!(c, "talos_upper_body", tree_talos_upper_body, 20, 20, talos);
+    bench_robot!(c, "solo12", tree_solo12, 19, 18, tree("solo12", true));
+    bench_robot!(c, "g1_29dof", tree_g1_29dof, 36, 35, tree("g1_29dof", true));
 }
 
 criterion_group! {
