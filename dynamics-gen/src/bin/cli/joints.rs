@@ -3,11 +3,22 @@
 use super::args::ModelArgs;
 use dynamics_gen::dynamics_model::{shipped, JointKind};
 
-/// `dynamics-gen joints`: one movable joint per line, in vector order.
+/// `dynamics-gen joints`: one movable joint per line, in vector order (a floating base
+/// first; on a tree each joint says which link it hangs from).
 pub fn run(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
-    let width = robot.joints.iter().map(|j| j.name.len()).max().unwrap_or(0);
-    for j in &robot.joints {
+    let mut width = robot.joints.iter().map(|j| j.name.len()).max().unwrap_or(0);
+    if robot.base.floating {
+        width = width.max("(floating base)".len());
+        println!(
+            "{:<width$}  {:<10}  base link `{}`: q[0..7] = (p, quat x y z w), velocity[0..6] = (ω_b, v_b) in the base frame; the joints follow at q[7..], velocity[6..]",
+            "(floating base)",
+            "free",
+            robot.base.name
+        );
+    }
+    let tree = !robot.is_serial();
+    for (i, j) in robot.joints.iter().enumerate() {
         // `+ 0.0` prints −0 as 0.
         let s: Vec<String> = j.screw.iter().map(|x| format!("{}", x + 0.0)).collect();
         let unit = match j.kind {
@@ -23,8 +34,16 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             (JointKind::Revolute, None) => "continuous",
             (kind, _) => kind.as_str(),
         };
+        let parent = if tree {
+            match robot.links[i].parent {
+                Some(p) => format!("  hangs from `{}`", robot.links[p].name),
+                None => format!("  hangs from the base `{}`", robot.base.name),
+            }
+        } else {
+            String::new()
+        };
         println!(
-            "{:<width$}  {:<10}  S = ({})  {limits}",
+            "{:<width$}  {:<10}  S = ({})  {limits}{parent}",
             j.name,
             kind,
             s.join(", ")
