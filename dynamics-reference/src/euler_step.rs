@@ -6,7 +6,10 @@ use nalgebra::DVector;
 /// ```text
 /// θ_new = θ + dt θ̇,    θ̇_new = θ̇ + dt θ̈
 /// ```
-/// Returns `(θ_new, θ̇_new)`.
+/// Returns `(θ_new, θ̇_new)`. This is the step of a fixed base, where `q̇ = θ̇`; on a floating
+/// base q has seven base entries against ν's six, so step q with
+/// `q + dt q̇` and `q̇` from [`crate::configuration_rate`] (as
+/// [`crate::forward_dynamics_trajectory`] does).
 ///
 /// # Panics
 /// If the three slices do not have the same length.

@@ -1,29 +1,48 @@
-//! The space Jacobian (Modern Robotics §5.1.1, the book's `JacobianSpace`).
+//! The space Jacobian (Modern Robotics §5.1.1, the book's `JacobianSpace`), on a kinematic
+//! tree and a floating base.
 
-use crate::check;
+use crate::base::{base_pose, joint_offset, joint_values};
+use crate::end_effector_pose::end_effector_path;
 use dynamics_model::lie::{adjoint, exp6};
 use dynamics_model::Robot;
 use nalgebra::{DMatrix, Matrix4};
 
-/// `J_s(θ)`, 6×n, with columns in {0}:
+/// `J_s(q)`, 6×nv, with columns in {0}, for the joints `k1..km` on the path from the base to
+/// the end effector (all joints on a serial chain):
 /// ```text
-/// J_s1 = S_1,    J_si = [Ad_{e^{[S_1]θ_1} ⋯ e^{[S_{i−1}]θ_{i−1}}}] S_i    (i = 2..n)
+/// J_s,k1 = S_k1,    J_s,kl = [Ad_{e^{[S_k1]θ_k1} ⋯ e^{[S_k(l−1)]θ_k(l−1)}}] S_kl
 /// ```
-/// so that the end-effector twist in {0} is `V_s = J_s θ̇`.
+/// and zero columns for the joints off the path, so that the end-effector twist in {0} is
+/// `V_s = J_s ν`.
+///
+/// Floating base: the base's body twist `ν_b` moves everything, and `V_s = [Ad_{T_{0b}}] (ν_b +
+/// J_s,fixed θ̇)`, so the six base columns are `[Ad_{T_{0b}}]` and the joint columns the
+/// fixed-base ones (computed in the base frame) times `[Ad_{T_{0b}}]`.
 ///
 /// # Panics
-/// If `q` does not have `robot.dof()` entries.
+/// If `q` does not have `robot.nq()` entries.
 pub fn jacobian_space(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
-    check::joint_vector(robot, "q", q);
-    let s_list = robot.s_list();
-    let n = robot.dof();
-    let mut j_s = DMatrix::zeros(6, n);
+    let t_0b = base_pose(robot, q);
+    let theta = joint_values(robot, q);
+    let off = joint_offset(robot);
+    let mut j_s = DMatrix::zeros(6, robot.nv());
     let mut t = Matrix4::<f64>::identity();
-    for i in 0..n {
-        if i > 0 {
-            t *= exp6(&s_list[i - 1], q[i - 1]);
+    let path = end_effector_path(robot);
+    for (l, &i) in path.iter().enumerate() {
+        if l > 0 {
+            let k = path[l - 1];
+            t *= exp6(&robot.joints[k].screw, theta[k]);
         }
-        j_s.column_mut(i).copy_from(&(adjoint(&t) * s_list[i]));
+        let column = adjoint(&t) * robot.joints[i].screw; // in the base frame
+        if robot.base.floating {
+            j_s.column_mut(off + i)
+                .copy_from(&(adjoint(&t_0b) * column));
+        } else {
+            j_s.column_mut(off + i).copy_from(&column);
+        }
+    }
+    if robot.base.floating {
+        j_s.view_mut((0, 0), (6, 6)).copy_from(&adjoint(&t_0b));
     }
     j_s
 }

@@ -1,6 +1,8 @@
-//! Generic recursive rigid-body dynamics of an open serial chain, written plainly after
-//! Modern Robotics (Lynch & Park), sections 8.3–8.5, with the semantics of the book's Python
-//! library (`InverseDynamics`, `MassMatrix`, `ForwardDynamics`, …).
+//! Generic recursive rigid-body dynamics of a kinematic tree (the open serial chain is its
+//! special case) on a fixed or floating base, written plainly after Modern Robotics (Lynch &
+//! Park), sections 8.3–8.5, with the semantics of the book's Python library
+//! (`InverseDynamics`, `MassMatrix`, `ForwardDynamics`, …) and Featherstone's tree
+//! recursions (RNEA, CRBA) in the book's notation.
 //!
 //! This crate is the reference every generated function is checked against. It depends only
 //! on the robot model ([`dynamics_model`]) and [`nalgebra`], so it cannot share code with the
@@ -15,16 +17,47 @@
 //!   end-effector frame. `G_i` is link i's spatial inertia in {i}; {i} need not be at the
 //!   centre of mass (the full 6×6 is used everywhere, the centre of mass for the potential
 //!   energy comes from [`dynamics_model::SpatialInertia::com`]).
-//! - `A_i = [Ad_{M_{0i}⁻¹}] S_i` is joint i's screw axis in {i};
-//!   `T_{i,i−1} = e^{−[A_i]θ_i} M_{i−1,i}⁻¹` and `T_{n+1,n} = M_{n,n+1}⁻¹` (see [`ChainFrames`]).
+//! - Trees: link i hangs from `λ(i)` ([`dynamics_model::Link::parent`], always an earlier
+//!   link, or the base); a serial chain has `λ(i) = i − 1` and is not a separate code path.
+//!   `A_i = [Ad_{M_{0i}⁻¹}] S_i` is joint i's screw axis in {i};
+//!   `T_{i,λ(i)} = e^{−[A_i]θ_i} M_{λ(i),i}⁻¹` and `T_{n+1,λ} = M_{λ,n+1}⁻¹` (see [`TreeFrames`]).
+//!   Each link's wrench is carried into its parent; `M_ij = 0` (exactly) when joints i and j
+//!   lie on different branches; Jacobian columns of joints off the end effector's path are 0.
 //! - `V̇_0 = (0, −g)`: gravity enters as an upward acceleration of the base, so `g` is the
 //!   gravity vector in {0} (e.g. `(0, 0, −9.81)`), passed explicitly like the book's functions
 //!   do (use [`dynamics_model::Robot::gravity`] for the robot's own).
 //! - `F_tip` is the wrench `(m, f)` the end effector applies **to the environment**, expressed
 //!   in {n+1}.
 //! - The equations of motion are
-//!   `τ = M(θ) θ̈ + c(θ, θ̇) + g(θ) + J_b(θ)ᵀ F_tip`, where `J_b` is the body Jacobian of {n+1},
-//!   `c = C(θ, θ̇) θ̇` (Coriolis and centripetal terms) and `g(θ) = ∂P/∂θ`.
+//!   `τ = M(q) ν̇ + c(q, ν) + g(q) + J_b(q)ᵀ F_tip`, where `J_b` is the body Jacobian of {n+1},
+//!   `c = C(q, ν) ν` (Coriolis and centripetal terms) and `g(q) = ∂P/∂q`. On a fixed base
+//!   `q = θ`, `ν = θ̇`, `ν̇ = θ̈` (n entries each), as in the book.
+//!
+//! ## Floating base
+//!
+//! With [`dynamics_model::Base::floating`], the base is body 0 on a free joint (the
+//! conventions of [`dynamics_model`]'s crate docs): nq = n + 7, nv = n + 6, and
+//!
+//! - `q = (p, quat, θ)`: the base origin in {0}, its orientation `R` as a quaternion
+//!   `(x, y, z, w)`, scalar last, **normalised inside** (`R` from `quat/|quat|`, any nonzero
+//!   4-vector is accepted), then the joint values;
+//! - `ν = (ω_b, v_b, θ̇)`: the base's body twist in the base frame, then the joint rates; `ν̇`
+//!   likewise (`ν̇_b` is the derivative of the body twist);
+//! - `τ = (m_b, f_b, τ_θ)`: the wrench applied to the base, in the base frame (moment about the
+//!   base origin), then the joint forces.
+//!
+//! The recursions start from the base body: `V_0 = ν_b`, `V̇_0 = ν̇_b + (0, −Rᵀ g)`, with the
+//! base's own inertia [`dynamics_model::Base::inertia`]; `τ[0..6]` is the total wrench the base
+//! body needs. `M[0..6, 0..6]` is the composite spatial inertia of the whole robot in the base
+//! frame and `M[0..6, ·] ν` its spatial momentum there; `M` depends on θ only. The potential
+//! energy counts the base; the Jacobians' six base columns map `ν_b`. The configuration moves
+//! by [`configuration_rate`] (`ṗ = R v_b`, `quaṫ = ½ quat ⊗ (ω_b, 0)`).
+//!
+//! Pinocchio's free flyer (`JointModelFreeFlyer`, LOCAL base velocity) has the same q; its
+//! velocity, acceleration and force vectors put the linear part first:
+//! Pinocchio `v = (v_b, ω_b, θ̇)`, `a = (v̇_b, ω̇_b, θ̈)`, `τ = (f_b, m_b, τ_θ)`. So entries 0..3
+//! and 3..6 swap, and so do rows and columns 0..3 and 3..6 of M, C and Ṁ: with P the
+//! permutation `(3, 4, 5, 0, 1, 2, 6, 7, …)`, `M_here = P M_pinocchio Pᵀ`.
 //!
 //! # Example
 //!
@@ -54,21 +87,29 @@
 //!
 //! # API
 //!
-//! Every function takes the robot first. Joint-space vectors (θ, θ̇, θ̈, τ) are `&[f64]` of
-//! length n = [`dynamics_model::Robot::dof`] (a `DVector` passes with `.as_slice()`); gravity is
-//! a `&Vector3<f64>`, `F_tip` a `&Vector6<f64>`. Results are `DVector<f64>` / `DMatrix<f64>`.
-//! Trajectories are `DMatrix<f64>` with one row per time step (N×n, and N×6 for `F_tip`), as in
-//! the book's library.
+//! Every function takes the robot first. Configurations q are `&[f64]` of length
+//! nq = [`dynamics_model::Robot::nq`]; velocities, accelerations and forces (ν, ν̇, τ) are
+//! `&[f64]` of length nv = [`dynamics_model::Robot::nv`] (both n on a fixed base; a `DVector`
+//! passes with `.as_slice()`); gravity is a `&Vector3<f64>`, `F_tip` a `&Vector6<f64>`.
+//! Results are `DVector<f64>` / `DMatrix<f64>` of nv entries / nv×nv (6×nv for Jacobians).
+//! Trajectories are `DMatrix<f64>` with one row per time step (N×nq for q, N×nv for ν, ν̇ and
+//! τ, N×6 for `F_tip`), as in the book's library.
 //!
-//! A joint vector whose length is not n is a programming error and panics with a message that
+//! Everything holds for trees and floating bases: inverse and forward dynamics, M, c, g, C,
+//! Ṁ, energies, poses, Jacobians, tip forces and trajectories. [`euler_step`] alone is the
+//! book's fixed-base step (`q̇ = θ̇`); trajectories step a floating base with
+//! [`configuration_rate`].
+//!
+//! A vector whose length is not nq or nv is a programming error and panics with a message that
 //! names the argument; everything else (including a mass matrix that is not positive definite)
 //! is reported through [`ReferenceError`].
 //!
 //! The functions accept every robot [`dynamics_model::Robot::from_mr_lists_unchecked`] builds,
 //! e.g. a screw axis with `|ω| ≠ 1`, as the book's library does.
 
-mod chain;
+mod base;
 mod check;
+mod configuration_rate;
 mod coriolis_matrix;
 mod end_effector_forces;
 mod end_effector_pose;
@@ -76,6 +117,7 @@ mod error;
 mod euler_step;
 mod forward_dynamics;
 mod forward_dynamics_trajectory;
+mod frames;
 mod gravity_forces;
 mod inverse_dynamics;
 mod inverse_dynamics_trajectory;
@@ -88,7 +130,8 @@ mod mass_matrix_dot;
 mod potential_energy;
 mod vel_quadratic_forces;
 
-pub use chain::ChainFrames;
+pub use base::{base_pose, quaternion_rotation};
+pub use configuration_rate::configuration_rate;
 pub use coriolis_matrix::{coriolis_matrix, mass_matrix_partials};
 pub use end_effector_forces::end_effector_forces;
 pub use end_effector_pose::end_effector_pose;
@@ -96,6 +139,7 @@ pub use error::ReferenceError;
 pub use euler_step::euler_step;
 pub use forward_dynamics::forward_dynamics;
 pub use forward_dynamics_trajectory::forward_dynamics_trajectory;
+pub use frames::TreeFrames;
 pub use gravity_forces::gravity_forces;
 pub use inverse_dynamics::inverse_dynamics;
 pub use inverse_dynamics_trajectory::inverse_dynamics_trajectory;

@@ -2,6 +2,7 @@
 //! and comparing numbers with the project's tolerance.
 #![allow(dead_code)]
 
+pub mod pinocchio;
 pub mod random_chain;
 
 use dynamics_model::Robot;
