@@ -89,7 +89,10 @@ fn random_trees_through_the_graph_equal_the_reference() {
             }
         }
     }
-    assert!(floating == 100 && branched > 150, "{floating} floating, {branched} branched");
+    assert!(
+        floating == 100 && branched > 150,
+        "{floating} floating, {branched} branched"
+    );
     println!(
         "{TREES} trees ({bodies} bodies, {floating} floating, {branched} branched, {zeros} \
          structural zeros of M); worst error as a fraction of the tolerance: M, c, g, τ \

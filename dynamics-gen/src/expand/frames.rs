@@ -197,10 +197,11 @@ fn dh_frames(lines: &[AxisLine], parents: &[Option<usize>]) -> Vec<Matrix4<f64>>
             ),
             None => (Vector3::zeros(), Vector3::x()),
         };
-        let landing = landing_of[i].unwrap_or_else(|| {
-            // The point of axis i nearest the parent's origin.
-            point + z * z.dot(&(parent_origin - point))
-        });
+        // Where the parent's normal landed, or the point nearest the parent's origin; either
+        // way projected onto axis i (a "parallel" landing of nearly parallel axes, see
+        // [`FAR`], lies beside the axis, and a frame origin off the axis is a wrong model).
+        let landing = landing_of[i].unwrap_or(parent_origin);
+        let landing = point + z * z.dot(&(landing - point));
         let (origin, x) = match first_child[i] {
             Some(next_i) => {
                 let next = &lines[next_i];

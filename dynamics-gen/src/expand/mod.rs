@@ -201,7 +201,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let mut roots: Vec<&[ExprId]> = vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics];
     roots.extend(candidates);
     let (g, pruned) = if prune {
-        g.prune_zeros(&roots, &sample_range, ZERO_SEED)
+        prune_checked(g, &roots)
     } else {
         (g, roots.iter().map(|r| r.to_vec()).collect())
     };
@@ -236,6 +236,59 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         forward_dynamics,
         forward_route: route,
     }
+}
+
+/// The tolerances (multiples of `ε·m`, see [`crate::expr::zeros`]) tried in turn by
+/// [`prune_checked`]: the default, a tighter one, and exact zeros only.
+const PRUNE_TOLERANCES: [f64; 3] = [crate::expr::zeros::TOL_FACTOR, 1e-3, 0.0];
+
+/// Relative change of any output, at the check's samples, beyond which a pruning is refused.
+const PRUNE_CHECK: f64 = 1e-9;
+
+/// [`ExprGraph::prune_zeros`], checked: the outputs of the pruned graph are evaluated at
+/// fresh random inputs beside the unpruned ones, and where any output group differs by more
+/// than [`PRUNE_CHECK`] (relative to the group's largest value), the pruning is redone with
+/// the next, tighter tolerance of [`PRUNE_TOLERANCES`]; the graph stays unpruned if none
+/// passes. (Deep trees need this: there the rounding bound that decides what is zero can
+/// exceed a genuinely non-zero sum.)
+fn prune_checked(g: ExprGraph, roots: &[&[ExprId]]) -> (ExprGraph, Vec<Vec<ExprId>>) {
+    let mut rng = crate::expr::zeros::SplitMix(ZERO_SEED ^ 0xC4EC);
+    let samples: Vec<Vec<(Input, f64)>> = (0..3)
+        .map(|_| {
+            g.inputs()
+                .map(|x| {
+                    let (lo, hi) = sample_range(x);
+                    (x, rng.uniform(lo, hi))
+                })
+                .collect()
+        })
+        .collect();
+    let value = |sample: &[(Input, f64)], x: Input| {
+        sample
+            .iter()
+            .find(|(y, _)| *y == x)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let before: Vec<Vec<Vec<f64>>> = samples
+        .iter()
+        .map(|s| roots.iter().map(|r| g.eval(r, &|x| value(s, x))).collect())
+        .collect();
+    for tol in PRUNE_TOLERANCES {
+        let (pg, pruned) = g.prune_zeros_with(roots, &sample_range, ZERO_SEED, tol);
+        let agrees = samples.iter().zip(&before).all(|(s, want)| {
+            pruned.iter().zip(want).all(|(r, y)| {
+                let x = pg.eval(r, &|x| value(s, x));
+                let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                x.iter()
+                    .zip(y)
+                    .all(|(a, b)| (a - b).abs() <= PRUNE_CHECK * scale + 1e-300)
+            })
+        });
+        if agrees {
+            return (pg, pruned);
+        }
+    }
+    (g.clone(), roots.iter().map(|r| r.to_vec()).collect())
 }
 
 /// Seed of the random inputs at which [`ExprGraph::prune_zeros`] looks for zero nodes.

@@ -136,3 +136,31 @@ fn the_quaternion_is_normalised() {
         }
     }
 }
+
+/// A floating tree with a 15-body branch: the rounding bound that decides which sums are
+/// zero over-estimates its articulated-body algorithm's errors so much that the default
+/// tolerance pruned genuinely non-zero sums (ν̇ of a whole branch came out 0). The checked
+/// pruning must keep every route exact.
+#[test]
+fn pruning_is_checked_on_a_deep_tree() {
+    let spec = TreeSpec {
+        dof: 31,
+        prismatic: 0.25,
+        branching: 0.3,
+        floating: true,
+    };
+    let r = random_tree(3, spec);
+    let nv = r.nv();
+    let (q, v, a) = state(&r, 3, 1.0);
+    let zeros = vec![0.0; nv];
+    for route in [ForwardRoute::Ldlt, ForwardRoute::Aba] {
+        let d = expand_with_route(&r, route);
+        let tau = eval(&d, &d.inverse_dynamics, &q, &v, &a, &zeros);
+        let back = eval(&d, &d.forward_dynamics, &q, &v, &zeros, &tau);
+        assert!(
+            max_err(&back, &a) < 1e-9,
+            "{route:?}: {:e}",
+            max_err(&back, &a)
+        );
+    }
+}

@@ -67,6 +67,14 @@
 //! but not all is kept (the test must hold at every sample), and so is a node with `m = 0`
 //! or a non-finite value or magnitude at any sample.
 //!
+//! The argument bounds the change of the pruned node, not of the outputs: where `m`
+//! over-estimates the rounding error by many orders of magnitude (deep trees: the
+//! articulated inertias of a 15-body branch), a genuinely non-zero sum can fall under
+//! `ε·m`, and its removal is then amplified downstream. The expansion therefore checks every
+//! pruning by evaluating the outputs before and after at fresh samples
+//! (`expand::prune_checked`) and retries with a tighter tolerance, or keeps the graph
+//! unpruned, when they differ.
+//!
 //! To stay on the safe side, a node that is used directly as a divisor or under a square
 //! root is never replaced: there a change at rounding level is not small after the
 //! operation (`1/v`, `√v`).
@@ -114,6 +122,17 @@ impl ExprGraph {
         roots: &[ExprId],
         range: &dyn Fn(Input) -> (f64, f64),
         seed: u64,
+    ) -> Vec<bool> {
+        self.find_zeros_with(roots, range, seed, TOL_FACTOR)
+    }
+
+    /// [`find_zeros`](Self::find_zeros) with the tolerance `tol_factor · ε · m`.
+    pub fn find_zeros_with(
+        &self,
+        roots: &[ExprId],
+        range: &dyn Fn(Input) -> (f64, f64),
+        seed: u64,
+        tol_factor: f64,
     ) -> Vec<bool> {
         let n = self.len();
         let live = self.live(roots);
@@ -179,7 +198,7 @@ impl ExprGraph {
                 val[i] = vi;
                 mag[i] = mi;
                 if zero[i] {
-                    let tol = TOL_FACTOR * f64::EPSILON;
+                    let tol = tol_factor * f64::EPSILON;
                     zero[i] = mi > 0.0 && mi.is_finite() && vi.is_finite() && vi.abs() <= tol * mi;
                 }
             }
@@ -197,8 +216,20 @@ impl ExprGraph {
         range: &dyn Fn(Input) -> (f64, f64),
         seed: u64,
     ) -> (ExprGraph, Vec<Vec<ExprId>>) {
+        self.prune_zeros_with(roots, range, seed, TOL_FACTOR)
+    }
+
+    /// [`prune_zeros`](Self::prune_zeros) with the tolerance `tol_factor · ε · m`; a factor
+    /// of 0 prunes only nodes that are exactly zero at every sample.
+    pub fn prune_zeros_with(
+        &self,
+        roots: &[&[ExprId]],
+        range: &dyn Fn(Input) -> (f64, f64),
+        seed: u64,
+        tol_factor: f64,
+    ) -> (ExprGraph, Vec<Vec<ExprId>>) {
         let all: Vec<ExprId> = roots.iter().flat_map(|r| r.iter().copied()).collect();
-        let zero = self.find_zeros(&all, range, seed);
+        let zero = self.find_zeros_with(&all, range, seed, tol_factor);
         let live = self.live(&all);
         let mut g = ExprGraph::new();
         let mut map = vec![ExprId(u32::MAX); self.len()];
