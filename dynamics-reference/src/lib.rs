@@ -50,8 +50,16 @@
 //! base's own inertia [`dynamics_model::Base::inertia`]; `τ[0..6]` is the total wrench the base
 //! body needs. `M[0..6, 0..6]` is the composite spatial inertia of the whole robot in the base
 //! frame and `M[0..6, ·] ν` its spatial momentum there; `M` depends on θ only. The potential
-//! energy counts the base; the Jacobians' six base columns map `ν_b`. The configuration moves
-//! by [`configuration_rate`] (`ṗ = R v_b`, `quaṫ = ½ quat ⊗ (ω_b, 0)`).
+//! energy counts the base, and `g(q)` is its derivative along the velocity directions (for
+//! the base, along its body twist); the poses ([`link_poses`], [`end_effector_pose`]) are in
+//! {0} through the base pose ([`base_pose`]); the Jacobians' six base columns map `ν_b`. The
+//! configuration moves by [`configuration_rate`] (`ṗ = R v_b`, `quaṫ = ½ quat ⊗ (ω_b, 0)`).
+//!
+//! Because `ν_b` is a body twist and not the derivative of coordinates, the Coriolis matrix
+//! is not the Christoffel form alone: [`coriolis_matrix`] adds the base's Euler–Poincaré term
+//! `−[ad_{ν_b}]ᵀ h_b` (`h_b` the momentum in the base frame) as a skew-symmetric block, so that
+//! `c = C ν` and `Ṁ − 2C` is skew-symmetric on floating bases too (a C with these two properties
+//! is not unique there, so other libraries' C may differ while c agrees).
 //!
 //! Pinocchio's free flyer (`JointModelFreeFlyer`, LOCAL base velocity) has the same q; its
 //! velocity, acceleration and force vectors put the linear part first:
@@ -82,6 +90,35 @@
 //!
 //! let qdd = dynamics_reference::forward_dynamics(&robot, &q, &[0.0], tau.as_slice(), &robot.gravity, &Vector6::zeros())?;
 //! assert!((qdd[0] - 1.5).abs() < 1e-12);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The same pendulum on a floating base of 1 kg: unactuated and at rest, everything falls
+//! together, so the base's body acceleration is `(0, Rᵀ g)` and the joint does not move. The
+//! quaternion `(0, 0, 0, 2)` is the identity rotation (it is normalised inside).
+//!
+//! ```
+//! # use dynamics_model::lie::rp_to_trans;
+//! # use dynamics_model::{Robot, SpatialInertia};
+//! # use nalgebra::{Matrix3, Matrix4, Matrix6, Vector3, Vector6};
+//! # let (m, l) = (2.0, 0.5);
+//! # let m01 = rp_to_trans(&Matrix3::identity(), &Vector3::new(0.0, 0.0, -l));
+//! # let g1 = Matrix6::from_diagonal(&Vector6::new(0.0, 0.0, 0.0, m, m, m));
+//! # let s1 = Vector6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+//! let mut robot = Robot::from_mr_lists(&[m01, Matrix4::identity()], &[g1], &[s1], Vector3::new(0.0, 0.0, -9.81))?;
+//! robot.base.floating = true;
+//! robot.base.inertia = SpatialInertia::at_com(1.0, Matrix3::identity() * 0.01);
+//! assert_eq!((robot.nq(), robot.nv()), (8, 7));
+//!
+//! let q = [0.1, 0.2, 0.3, 0.0, 0.0, 0.0, 2.0, 0.4]; // p, quat (x, y, z, w), θ
+//! let (rest, no_force) = ([0.0; 7], [0.0; 7]);
+//! let acc = dynamics_reference::forward_dynamics(&robot, &q, &rest, &no_force, &robot.gravity, &Vector6::zeros())?;
+//! let free_fall = [0.0, 0.0, 0.0, 0.0, 0.0, -9.81, 0.0]; // (ω̇_b, v̇_b, θ̈)
+//! assert!(acc.iter().zip(free_fall).all(|(a, b)| (a - b).abs() < 1e-12));
+//!
+//! // Holding it up takes the weight (m_b + m)·9.81 as an upward force on the base.
+//! let hold = dynamics_reference::gravity_forces(&robot, &q, &robot.gravity);
+//! assert!((hold[5] - 3.0 * 9.81).abs() < 1e-12);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!

@@ -89,3 +89,60 @@ fn wrong_length_names_the_argument() {
         &Vector6::zeros(),
     );
 }
+
+#[test]
+#[should_panic(
+    expected = "`qdd` has 3 entries but robot `random_tree_3` has a floating base and 3 joints, so nv = 9"
+)]
+fn wrong_length_on_a_floating_base_names_the_argument_and_nv() {
+    let robot = dynamics_model::random::random_tree(
+        3,
+        dynamics_model::random::TreeSpec {
+            dof: 3,
+            prismatic: 0.0,
+            branching: 0.5,
+            floating: true,
+        },
+    );
+    let q = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.1, 0.2, 0.3];
+    dr::inverse_dynamics(
+        &robot,
+        &q,
+        &[0.0; 9],
+        &[0.0; 3],
+        &robot.gravity,
+        &Vector6::zeros(),
+    );
+}
+
+#[test]
+#[should_panic(
+    expected = "`q` has 9 entries but robot `random_tree_3` has a floating base and 3 joints, so nq = 10"
+)]
+fn configuration_of_the_wrong_length_on_a_floating_base() {
+    let robot = dynamics_model::random::random_tree(
+        3,
+        dynamics_model::random::TreeSpec {
+            dof: 3,
+            prismatic: 0.0,
+            branching: 0.5,
+            floating: true,
+        },
+    );
+    dr::mass_matrix(&robot, &[0.0; 9]);
+}
+
+#[test]
+#[should_panic(expected = "the base quaternion [0.0, 0.0, 0.0, 0.0] is zero")]
+fn zero_quaternion_is_refused() {
+    let robot = dynamics_model::random::random_tree(
+        3,
+        dynamics_model::random::TreeSpec {
+            dof: 1,
+            prismatic: 0.0,
+            branching: 0.0,
+            floating: true,
+        },
+    );
+    dr::mass_matrix(&robot, &[0.0; 8]);
+}

@@ -4,6 +4,7 @@
 
 pub mod pinocchio;
 pub mod random_chain;
+pub mod random_tree;
 
 use dynamics_model::Robot;
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6, Vector3, Vector6};
