@@ -151,8 +151,18 @@ fn manual_example() -> String {
 fn the_documented_example_loads_with_its_values() {
     let robot = load(&manual_example());
     assert_eq!(robot.name, "demo");
-    assert_eq!(robot.joint_names(), ["shoulder", "elbow"]);
+    assert_eq!(robot.joint_names(), ["shoulder", "elbow", "camera_pan"]);
+    // A tree: the camera hangs from the upper arm, the tool from the forearm.
+    assert_eq!(robot.parents(), [None, Some(0), Some(0)]);
     assert_eq!(robot.end_effector.name, "tool");
+    assert_eq!(robot.end_effector.parent, Some(1));
+    assert_eq!(robot.base.name, "pedestal");
+    assert!(!robot.base.floating);
+    assert_eq!(robot.base.inertia.mass(), 10.0);
+    assert!((robot.base.inertia.com() - Vector3::new(0.0, 0.0, -0.05)).amax() < 1e-16);
+    // The camera's axis passes through its link's origin at home.
+    let camera = robot.home_poses()[3];
+    assert!((camera.fixed_view::<3, 1>(0, 3) - Vector3::new(0.1, 0.0, 0.3)).amax() < 1e-16);
     let shoulder = &robot.joints[0];
     assert_eq!(shoulder.limits.unwrap().effort, Some(150.0));
     assert_eq!(shoulder.gear_ratio, 1.0);

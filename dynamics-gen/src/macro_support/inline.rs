@@ -1,6 +1,17 @@
 //! `robot! { … }`: the inline robot, read into the TOML format's document and built by the
 //! TOML loader, so that both front ends share one meaning of every key.
 //!
+//! Trees and the base follow the TOML keys too:
+//!
+//! ```text
+//! base pelvis { floating: true, mass: 5, inertia: [..], com: [..] },  // [base]: name, then
+//!                                  // `floating` and a link's inertial keys and `body` blocks
+//! joint revolute torso_yaw { .., link torso { .. } },
+//! joint revolute left_shoulder { parent: torso, .. },   // the link it hangs from (a name or
+//!                                  // a string); default: the previous joint's link
+//! end_effector hand { parent: left_forearm, home: { .. } },  // default: the last joint's link
+//! ```
+//!
 //! Each key is checked here (known, not repeated, of the right kind, with its tokens
 //! recorded in a [`SpanMap`]); the numbers, array lengths and physics are then checked by
 //! the model ([`dynamics_model::toml_format`] and [`dynamics_model::validate`]), whose errors
@@ -50,7 +61,13 @@ struct Block {
     header: TokenStream,
 }
 
-const BLOCKS: &[&str] = &["joint", "link", "body", "end_effector"];
+const BLOCKS: &[&str] = &["joint", "link", "body", "end_effector", "base"];
+
+/// `parent: LINK` of a joint and of the end effector (the TOML `parent`).
+const PARENT: (&str, Type) = ("parent", Type::Name);
+
+/// The prefix of the base's fields in the span map (under [`Part::Robot`]).
+const BASE: &str = "base.";
 
 /// Parses the whole macro input.
 pub fn parse(input: TokenStream) -> syn::Result<Inline> {
@@ -84,6 +101,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     let mut doc = Table::new();
     let mut joints = Vec::new();
     let mut end_effector: Option<Table> = None;
+    let mut base: Option<Table> = None;
     let mut seen = Vec::new();
     let mut early = Vec::new();
     for item in items {
@@ -110,10 +128,17 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
                     }
                     end_effector = Some(end_effector_table(b, &mut spans, &mut errors));
                 }
+                "base" => {
+                    if base.is_some() {
+                        errors.at(&b.header, "duplicate `base`: a robot has one base");
+                        continue;
+                    }
+                    base = Some(base_table(b, &mut spans, &mut errors));
+                }
                 _ => errors.at(
                     &b.keyword,
                     format!(
-                        "a `{}` block goes inside a joint; at the top level are `joint`, `end_effector` and the keys {}",
+                        "a `{}` block goes inside a joint; at the top level are `joint`, `base`, `end_effector` and the keys {}",
                         b.keyword,
                         schema::names(ROBOT_KEYS)
                     ),
@@ -124,6 +149,16 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     if !doc.contains_key("name") {
         doc.insert("name".into(), Toml::String(ident.to_string()));
     }
+    let base_name = base
+        .as_ref()
+        .and_then(|b| b.get("name"))
+        .and_then(Toml::as_str)
+        .unwrap_or("base")
+        .to_string();
+    let base_keys: Vec<String> = base.iter().flat_map(|b| b.keys().cloned()).collect();
+    if let Some(b) = base {
+        doc.insert("base".into(), Toml::Table(b));
+    }
     doc.insert("joint".into(), Toml::Array(joints));
     if let Some(ee) = end_effector {
         doc.insert("end_effector".into(), Toml::Table(ee));
@@ -133,6 +168,11 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
             errors.push(spans.error(inv));
         }
     }
+    let spans = Located {
+        spans,
+        base_name,
+        base_keys,
+    };
     if let Some(e) = errors.take() {
         return Err(e);
     }
@@ -147,9 +187,48 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     Ok(robot)
 }
 
+/// The span map, and the base's name: the model names the base as a link without index,
+/// whose fields are recorded under [`Part::Robot`] as `base.FIELD`.
+struct Located {
+    spans: SpanMap,
+    base_name: String,
+    /// The keys written in the base block.
+    base_keys: Vec<String>,
+}
+
+impl Located {
+    /// A compile error for `e`, on its field's tokens.
+    fn error(&self, e: &Invalid) -> syn::Error {
+        match self.base_place(e) {
+            Some(tokens) => syn::Error::new_spanned(tokens, super::spans::message(e)),
+            None => self.spans.error(e),
+        }
+    }
+
+    /// The tokens an error about the base points at (`None` for other errors): the field,
+    /// else (as for a link's `inertia` and `mass`) the keys it may have been written with,
+    /// else the enclosing field, else the `base NAME` header.
+    fn base_place(&self, e: &Invalid) -> Option<&TokenStream> {
+        match &e.subject {
+            Subject::Link { index: None, name } if *name == self.base_name => {}
+            _ => return None,
+        }
+        let aliases: &[&str] = match e.field.as_str() {
+            "inertia" => &["inertia", "spatial_inertia", "shape", "mass", "body"],
+            "mass" => &["mass", "density", "shape", "inertia"],
+            _ => &[],
+        };
+        let field = aliases
+            .iter()
+            .find(|a| self.base_keys.iter().any(|k| k == *a))
+            .map_or_else(|| format!("{BASE}{}", e.field), |a| format!("{BASE}{a}"));
+        Some(self.spans.locate(&Part::Robot, &field))
+    }
+}
+
 /// A model error as compile errors on the fields it names, with the `early` checks (those
 /// the model could not reach because of another error) added once.
-fn model_error(spans: &SpanMap, e: &ModelError, early: &[Invalid], text: &str) -> syn::Error {
+fn model_error(spans: &Located, e: &ModelError, early: &[Invalid], text: &str) -> syn::Error {
     match e {
         ModelError::Invalid(list) => {
             let mut errors = Errors::default();
@@ -171,10 +250,10 @@ fn model_error(spans: &SpanMap, e: &ModelError, early: &[Invalid], text: &str) -
             }
             errors
                 .take()
-                .unwrap_or_else(|| syn::Error::new_spanned(&spans.fallback, e.to_string()))
+                .unwrap_or_else(|| syn::Error::new_spanned(&spans.spans.fallback, e.to_string()))
         }
         other => syn::Error::new_spanned(
-            &spans.fallback,
+            &spans.spans.fallback,
             format!("internal error in robot! (please report): {other}\n{text}"),
         ),
     }
@@ -204,7 +283,7 @@ fn parse_items(tokens: TokenStream, errors: &mut Errors) -> Vec<Item> {
             }
             _ => errors.at(
                 stream,
-                "expected `key: value`, or a block `joint revolute NAME { … }`, `link NAME { … }`, `body NAME { … }` or `end_effector NAME { … }`",
+                "expected `key: value`, or a block `joint revolute NAME { … }`, `link NAME { … }`, `body NAME { … }`, `base NAME { … }` or `end_effector NAME { … }`",
             ),
         }
     }
@@ -317,7 +396,8 @@ fn joint(
         match item {
             Item::Entry(e) => {
                 let key = e.key.to_string();
-                if let Some(ty) = schema::lookup(JOINT_KEYS, &key) {
+                let ty = schema::lookup(JOINT_KEYS, &key).or_else(|| schema::lookup(&[PARENT], &key));
+                if let Some(ty) = ty {
                     if seen.contains(&key) {
                         errors.at(
                             &e.key,
@@ -346,7 +426,7 @@ fn joint(
                     errors.at(
                         &e.key,
                         format!(
-                            "unknown field `{key}` in a joint; a joint has {}, a `link NAME {{ … }}`, or its link's keys `home`, {} and `body NAME {{ … }}` written in the joint",
+                            "unknown field `{key}` in a joint; a joint has `parent`, {}, a `link NAME {{ … }}`, or its link's keys `home`, {} and `body NAME {{ … }}` written in the joint",
                             schema::names(JOINT_KEYS),
                             schema::names(BODY_KEYS)
                         ),
@@ -402,9 +482,9 @@ fn joint(
                     ),
                 }
             }
-            bodies_into(&link_part, bodies, &mut link, spans, errors);
+            bodies_into(&link_part, "", bodies, &mut link, spans, errors);
         }
-        None => bodies_into(&link_part, flat_bodies, &mut link, spans, errors),
+        None => bodies_into(&link_part, "", flat_bodies, &mut link, spans, errors),
     }
     if !link.contains_key("name") {
         link.insert("name".into(), Toml::String(format!("link{}", i + 1)));
@@ -469,7 +549,9 @@ fn early_checks(i: usize, joint: &Table, link: &Table, early: &mut Vec<Invalid>)
     }
 }
 
-/// A link key (`home` or an inertial key) into `table`; `prefix` is `body[..].` for bodies.
+/// A link key (`home` or an inertial key) into `table`; `prefix` is put before the field in
+/// the span map: `""` for a link's own keys (which include `home`), `body[..].` for bodies,
+/// `base.` and `base.body[..].` for the base's.
 #[allow(clippy::too_many_arguments)]
 fn link_entry(
     part: &Part,
@@ -504,9 +586,11 @@ fn link_entry(
     }
 }
 
-/// `body NAME { … }` blocks into `link.body`.
+/// `body NAME { … }` blocks into `link.body` (or the base's `body`); `root` is put before
+/// the fields in the span map (`base.` for the base).
 fn bodies_into(
     part: &Part,
+    root: &str,
     bodies: Vec<Block>,
     link: &mut Table,
     spans: &mut SpanMap,
@@ -515,13 +599,13 @@ fn bodies_into(
     if bodies.is_empty() {
         return;
     }
-    spans.insert(part.clone(), "body", bodies[0].header.clone());
+    spans.insert(part.clone(), format!("{root}body"), bodies[0].header.clone());
     let mut out = Vec::new();
     for (k, b) in bodies.into_iter().enumerate() {
         let name = block_name(&b.args, "body", errors);
         let prefix = match &name {
-            Some(n) => format!("body[{n}]."),
-            None => format!("body[{k}]."),
+            Some(n) => format!("{root}body[{n}]."),
+            None => format!("{root}body[{k}]."),
         };
         spans.insert(part.clone(), prefix.trim_end_matches('.'), b.header.clone());
         let mut t = Table::new();
@@ -544,7 +628,7 @@ fn bodies_into(
     link.insert("body".into(), Toml::Array(out));
 }
 
-/// `end_effector NAME { home: … }`.
+/// `end_effector NAME { parent: LINK, home: … }`.
 fn end_effector_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table {
     spans.insert(Part::EndEffector, "", b.header.clone());
     let mut t = Table::new();
@@ -555,26 +639,101 @@ fn end_effector_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Tab
     for item in b.items {
         match item {
             Item::Entry(e) => {
-                let Some(ty) = key_type(&e, &[HOME], &mut seen, "the end effector", errors) else {
+                let Some(ty) = key_type(&e, &[PARENT, HOME], &mut seen, "the end effector", errors)
+                else {
                     continue;
                 };
-                spans.insert(Part::EndEffector, "home", e.tokens.clone());
+                let key = e.key.to_string();
+                spans.insert(Part::EndEffector, key.clone(), e.tokens.clone());
                 if let Kind::Table(entries) = &e.value.kind {
                     for sub in entries {
                         spans.insert(
                             Part::EndEffector,
-                            format!("home.{}", sub.key),
+                            format!("{key}.{}", sub.key),
                             sub.tokens.clone(),
                         );
                     }
                 }
                 if let Some(v) = to_toml(&e.value, ty, errors) {
-                    t.insert("home".into(), v);
+                    t.insert(key, v);
                 }
             }
-            Item::Block(inner) => errors.at(&inner.keyword, "the end effector holds `home` only"),
+            Item::Block(inner) => errors.at(
+                &inner.keyword,
+                "the end effector holds `parent` and `home` only",
+            ),
         }
     }
+    t
+}
+
+/// `base NAME { floating: true, mass: …, body NAME { … } }`: the TOML `[base]`, its fields
+/// recorded under [`Part::Robot`] as `base.FIELD`.
+fn base_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table {
+    spans.insert(Part::Robot, "base", b.header.clone());
+    let mut t = Table::new();
+    if let Some(n) = block_name(&b.args, "base", errors) {
+        t.insert("name".into(), Toml::String(n));
+    }
+    if let Some(n) = b.args.first() {
+        spans.insert(Part::Robot, format!("{BASE}name"), n.to_token_stream());
+    }
+    let mut seen = Vec::new();
+    let mut bodies = Vec::new();
+    for item in b.items {
+        match item {
+            Item::Entry(e) if e.key == "floating" => {
+                if seen.iter().any(|k| k == "floating") {
+                    errors.at(&e.key, "duplicate field `floating` in the base");
+                    continue;
+                }
+                seen.push("floating".into());
+                spans.insert(Part::Robot, format!("{BASE}floating"), e.tokens.clone());
+                match &e.value.kind {
+                    Kind::Word(w) if w == "true" || w == "false" => {
+                        t.insert("floating".into(), Toml::Boolean(w == "true"));
+                    }
+                    Kind::Error => {}
+                    _ => errors.at(
+                        &e.value.tokens,
+                        format!(
+                            "expected `true` (a free 6-DoF joint between the world and the base) or `false`, found {}",
+                            e.value.describe()
+                        ),
+                    ),
+                }
+            }
+            Item::Entry(e) if schema::lookup(BODY_KEYS, &e.key.to_string()).is_none() => {
+                errors.at(
+                    &e.key,
+                    format!(
+                        "unknown field `{}` in the base; the base has `floating`, {} and `body NAME {{ … }}` blocks (its name is written after `base`)",
+                        e.key,
+                        schema::names(BODY_KEYS)
+                    ),
+                );
+            }
+            Item::Entry(e) => link_entry(
+                &Part::Robot,
+                BASE,
+                e,
+                &mut t,
+                &mut seen,
+                "the base",
+                spans,
+                errors,
+            ),
+            Item::Block(inner) if inner.keyword == "body" => bodies.push(inner),
+            Item::Block(inner) => errors.at(
+                &inner.keyword,
+                format!(
+                    "a `{}` block cannot be inside the base; inside are `body` blocks",
+                    inner.keyword
+                ),
+            ),
+        }
+    }
+    bodies_into(&Part::Robot, BASE, bodies, &mut t, spans, errors);
     t
 }
 
@@ -645,5 +804,59 @@ fn to_toml(v: &Value, ty: Type, errors: &mut Errors) -> Option<Toml> {
             t.insert(key, x);
             Some(Toml::Table(t))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use quote::quote;
+
+    /// The tokens that model errors about the base's `fields` point at.
+    fn base_places(block: TokenStream, fields: &[&str]) -> Vec<String> {
+        let mut errors = Errors::default();
+        let mut items = parse_items(block, &mut errors);
+        let Some(Item::Block(b)) = items.pop() else {
+            panic!("a block")
+        };
+        let mut spans = SpanMap::new(quote!(Fallback));
+        let t = base_table(b, &mut spans, &mut errors);
+        assert!(!errors.any());
+        let located = Located {
+            spans,
+            base_name: "pelvis".into(),
+            base_keys: t.keys().cloned().collect(),
+        };
+        fields
+            .iter()
+            .map(|f| {
+                let subject = Subject::Link {
+                    index: None,
+                    name: "pelvis".into(),
+                };
+                let e = Invalid::new(subject, *f, "problem", "fix");
+                located.base_place(&e).expect("about the base").to_string()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn errors_about_the_base_point_at_its_fields() {
+        let places = base_places(
+            quote! { base pelvis { floating: true, shape: { box: [1, 2, 3] }, density: 10,
+            body hip { mass: 1, inertia: [1, 1, 1, 0, 0, 0] } } },
+            &["density", "inertia", "mass", "body[hip].inertia", "floating", "com"],
+        );
+        assert_eq!(
+            places,
+            [
+                "density : 10",
+                "shape : { box : [1 , 2 , 3] }",
+                "density : 10",
+                "inertia : [1 , 1 , 1 , 0 , 0 , 0]",
+                "floating : true",
+                "base pelvis",
+            ]
+        );
     }
 }

@@ -170,3 +170,170 @@ fn errors_are_accumulated_and_name_the_field() {
         "{all}"
     );
 }
+
+/// Two arms on a torso on a floating pelvis, in TOML.
+const TWO_ARMS: &str = r#"name = "TwoArms"
+
+[base]
+name = "pelvis"
+floating = true
+mass = 5
+inertia = [0.05, 0.04, 0.03, 0, 0, 0]
+com = [0, 0, 0.05]
+
+[[joint]]
+name = "torso_yaw"
+type = "revolute"
+axis = [0, 0, 1]
+point = [0, 0, 0]
+
+[joint.link]
+name = "torso"
+home = { xyz = [0, 0, 0.3] }
+mass = 10
+inertia = [0.3, 0.3, 0.1, 0, 0, 0]
+
+[[joint]]
+name = "left_shoulder"
+type = "revolute"
+parent = "torso"
+axis = [0, 1, 0]
+point = [0, 0.2, 0.5]
+
+[joint.link]
+name = "left_arm"
+home = { xyz = [0, 0.2, 0.2] }
+mass = 1
+inertia = [0.01, 0.01, 0.002, 0, 0, 0]
+com = [0, 0, -0.15]
+
+[[joint]]
+name = "right_shoulder"
+type = "revolute"
+parent = "torso"
+axis = [0, 1, 0]
+point = [0, -0.2, 0.5]
+
+[joint.link]
+name = "right_arm"
+home = { xyz = [0, -0.2, 0.2] }
+mass = 1
+inertia = [0.01, 0.01, 0.002, 0, 0, 0]
+com = [0, 0, -0.15]
+
+[end_effector]
+name = "hand"
+parent = "left_arm"
+home = { xyz = [0, 0, -0.3] }
+"#;
+
+#[test]
+fn a_tree_on_a_floating_base_inline_equals_toml() {
+    let inline = inline_robot(quote! {
+        pub struct TwoArms;
+        base pelvis {
+            floating: true,
+            mass: 5, inertia: [0.05, 0.04, 0.03, 0, 0, 0], com: [0, 0, 0.05],
+        },
+        joint revolute torso_yaw {
+            axis: [0, 0, 1], point: [0, 0, 0],
+            link torso { home: { xyz: [0, 0, 0.3] }, mass: 10, inertia: [0.3, 0.3, 0.1, 0, 0, 0] },
+        },
+        joint revolute left_shoulder {
+            parent: torso,
+            axis: [0, 1, 0], point: [0, 0.2, 0.5],
+            link left_arm {
+                home: { xyz: [0, 0.2, 0.2] }, mass: 1,
+                inertia: [0.01, 0.01, 0.002, 0, 0, 0], com: [0, 0, -0.15],
+            },
+        },
+        joint revolute right_shoulder {
+            parent: "torso",
+            axis: [0, 1, 0], point: [0, -0.2, 0.5],
+            home: { xyz: [0, -0.2, 0.2] }, mass: 1,
+            inertia: [0.01, 0.01, 0.002, 0, 0, 0], com: [0, 0, -0.15],
+        },
+        end_effector hand { parent: left_arm, home: { xyz: [0, 0, -0.3] } },
+    });
+    // The flat form names the link `link3`; the file names it `right_arm`.
+    let toml = dynamics_model::toml_format::from_str(
+        &TWO_ARMS.replace("\"right_arm\"", "\"link3\""),
+        "two_arms.toml",
+    )
+    .unwrap();
+    assert_eq!(
+        inline,
+        Robot {
+            source: inline.source.clone(),
+            ..toml
+        }
+    );
+    assert_eq!(inline.parents(), [None, Some(0), Some(0)]);
+    assert!(inline.base.floating);
+    assert_eq!(inline.base.name, "pelvis");
+    assert_eq!(inline.end_effector.parent, Some(1));
+}
+
+#[test]
+fn a_base_with_bodies_and_no_floating_key_is_fixed() {
+    let r = inline_robot(quote! {
+        pub struct Bodies;
+        base {
+            body hip { shape: { box: [0.2, 0.3, 0.1] }, mass: 4 },
+            body battery { mass: 1, inertia: [0, 0, 0, 0, 0, 0], frame: { xyz: [0, 0, 0.1] } },
+        },
+        joint revolute j { screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
+    });
+    assert_eq!(r.base.name, "base");
+    assert!(!r.base.floating);
+    assert_eq!(r.base.inertia.mass(), 5.0);
+    assert!((r.base.inertia.com() - nalgebra::Vector3::new(0.0, 0.0, 0.02)).amax() < 1e-16);
+}
+
+#[test]
+fn tree_and_base_key_errors_are_accumulated() {
+    let all = inline_errors(quote! {
+        pub struct Bad;
+        base pelvis { floating: yes, masss: 1, floating: false, home: {} },
+        base other {},
+        joint revolute a { parent: [1], screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
+        end_effector e { parent: 1, hom: {}, link x {} },
+    })
+    .join("\n");
+    for part in [
+        "expected `true`",
+        "unknown field `masss` in the base",
+        "duplicate field `floating` in the base",
+        "unknown field `home` in the base",
+        "duplicate `base`",
+        "expected a name or a string, found a list",
+        "expected a name or a string, found a number",
+        "unknown field `hom` in the end effector",
+        "the end effector holds `parent` and `home` only",
+    ] {
+        assert!(all.contains(part), "`{part}` missing from:\n{all}");
+    }
+}
+
+#[test]
+fn tree_and_base_model_errors_name_the_field() {
+    let all = inline_errors(quote! {
+        pub struct Bad;
+        base pelvis { floating: true, mass: -5, inertia: [1, 1, 1, 0, 0, 0] },
+        joint revolute a { parent: nowhere, screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
+        joint revolute b { parent: link3, screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
+        joint revolute c { parent: pelvis, screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
+        end_effector e { parent: ghost },
+    })
+    .join("\n");
+    for part in [
+        "link `pelvis`, `mass`: the mass must be finite and ≥ 0",
+        "joint `a`, `parent`: `nowhere` is neither the base nor a link",
+        "joint `b`, `parent`: `link3` is the link of joint 3 `c`, which comes after this joint",
+        "end effector, `parent`: `ghost` is neither the base nor a link",
+    ] {
+        assert!(all.contains(part), "`{part}` missing from:\n{all}");
+    }
+    // Joint c, which hangs from the base by name, is fine: it is only named in b's error.
+    assert_eq!(all.matches("joint `c`").count(), 1, "{all}");
+}

@@ -1,12 +1,18 @@
-//! From the parsed file ([`super::schema`]) to a [`Robot`]: screw axes, home frames, joint
-//! properties and link inertias, with every schema-level problem collected.
+//! From the parsed file ([`super::schema`]) to a [`Robot`]: the tree's parents, screw axes,
+//! home frames, joint properties, link and base inertias, with every schema-level problem
+//! collected.
+//!
+//! Parent of joint i's link: `parent = "LINK"` names the base or the link of an earlier joint
+//! (`λ(i) = None` or k < i); without it, the previous joint's link (`λ(i) = i − 1`, the base
+//! for the first joint), so a file without `parent` keys is a serial chain. The end
+//! effector's `parent` names any link or the base (default: the last joint's link).
 //!
 //! Screw axis of joint i in {0}: given as `screw = S_i`, or from `axis = ω` (normalised to
 //! `ω̂`) and a point `q` on it: `S_i = (ω̂, −ω̂ × q)` (revolute), `S_i = (0, ω̂)` (prismatic).
 
 use super::body::body_inertia;
 use super::pose::{array, pose, vector3};
-use super::schema::{JointSpec, KindSpec, RobotFile};
+use super::schema::{BaseSpec, BodySpec, JointSpec, KindSpec, RobotFile};
 use crate::error::{Invalid, Subject};
 use crate::inertia::SpatialInertia;
 use crate::lie::twist;
@@ -33,6 +39,12 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
             errors.push(e);
             Vector3::from(DEFAULT_GRAVITY)
         }),
+    };
+    let base = base(spec.base.as_ref(), &mut errors);
+    let names = Names {
+        base: &base.name,
+        links: spec.joints.iter().map(|j| j.link.name.as_str()).collect(),
+        joints: spec.joints.iter().map(|j| j.name.as_str()).collect(),
     };
     let mut joint_names: HashMap<&str, usize> = HashMap::new();
     let mut link_names: HashMap<&str, usize> = HashMap::new();
@@ -72,7 +84,23 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
                 ),
                 "give every link its own name",
             ));
+        } else if j.link.name == base.name {
+            errors.push(Invalid::new(
+                link_subject.clone(),
+                "name",
+                format!("the link has the base's name `{}`", base.name),
+                "give the base (`[base] name`, default `base`) and every link its own name",
+            ));
         }
+        let parent = match &j.parent {
+            None => i.checked_sub(1),
+            Some(p) => names
+                .parent(&joint_subject, "parent", p, i)
+                .unwrap_or_else(|e| {
+                    errors.push(e);
+                    None
+                }),
+        };
         if let Some(joint) = joint(&joint_subject, j, &mut errors) {
             joints.push(joint);
         }
@@ -80,31 +108,45 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
             errors.push(e);
             Matrix4::identity()
         });
-        if let Some(inertia) = link_inertia(&link_subject, j, &mut errors) {
+        let own = j.link.own_body();
+        if let Some(inertia) = inertia(
+            &link_subject,
+            "link",
+            &own,
+            &j.link.bodies,
+            "[[joint.link.body]]",
+            &mut errors,
+        ) {
             links.push(Link {
                 name: j.link.name.clone(),
-                parent: i.checked_sub(1),
+                parent,
                 home,
                 inertia,
             });
         }
     }
-    let end_effector = match &spec.end_effector {
-        None => EndEffector {
-            name: "end_effector".into(),
-            parent: spec.joints.len().checked_sub(1),
-            home: Matrix4::identity(),
-        },
-        Some(ee) => EndEffector {
-            name: ee.name.clone().unwrap_or_else(|| "end_effector".into()),
-            parent: spec.joints.len().checked_sub(1),
-            home: match &ee.home {
-                None => Matrix4::identity(),
-                Some(v) => pose(&Subject::EndEffector, "home", v).unwrap_or_else(|e| {
+    let n = spec.joints.len();
+    let (ee_name, ee_parent, ee_home) = match &spec.end_effector {
+        None => (None, None, None),
+        Some(ee) => (ee.name.clone(), ee.parent.as_deref(), ee.home.as_ref()),
+    };
+    let end_effector = EndEffector {
+        name: ee_name.unwrap_or_else(|| "end_effector".into()),
+        parent: match ee_parent {
+            None => n.checked_sub(1),
+            Some(p) => names
+                .parent(&Subject::EndEffector, "parent", p, n)
+                .unwrap_or_else(|e| {
                     errors.push(e);
-                    Matrix4::identity()
+                    None
                 }),
-            },
+        },
+        home: match ee_home {
+            None => Matrix4::identity(),
+            Some(v) => pose(&Subject::EndEffector, "home", v).unwrap_or_else(|e| {
+                errors.push(e);
+                Matrix4::identity()
+            }),
         },
     };
     if !errors.is_empty() {
@@ -113,12 +155,93 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
     Ok(Robot {
         name: spec.name,
         source: file.to_string(),
-        base: Base::fixed(),
+        base,
         joints,
         links,
         end_effector,
         gravity,
     })
+}
+
+/// The base from `[base]`: its name (default `base`), whether it floats (default not), and
+/// its inertia in {0} (default none: a base without inertial keys is massless).
+fn base(spec: Option<&BaseSpec>, errors: &mut Vec<Invalid>) -> Base {
+    let Some(spec) = spec else {
+        return Base::fixed();
+    };
+    let name = spec.name.clone().unwrap_or_else(|| Base::fixed().name);
+    let subject = Subject::Link {
+        index: None,
+        name: name.clone(),
+    };
+    let own = spec.own_body();
+    let inertia = if own.is_empty() && spec.bodies.is_empty() {
+        Some(SpatialInertia::zero())
+    } else {
+        inertia(&subject, "base", &own, &spec.bodies, "[[base.body]]", errors)
+    };
+    Base {
+        name,
+        inertia: inertia.unwrap_or_else(SpatialInertia::zero),
+        floating: spec.floating.unwrap_or(false),
+    }
+}
+
+/// The names a `parent` key may give: the base's and the links', in joint order.
+struct Names<'a> {
+    base: &'a str,
+    links: Vec<&'a str>,
+    joints: Vec<&'a str>,
+}
+
+impl Names<'_> {
+    /// `λ` from a `parent` name: `None` for the base, `Some(k)` for link k, which must come
+    /// before `before` (the joint's own index; the number of joints for the end effector).
+    fn parent(
+        &self,
+        subject: &Subject,
+        field: &str,
+        name: &str,
+        before: usize,
+    ) -> Result<Option<usize>, Invalid> {
+        if name == self.base {
+            return Ok(None);
+        }
+        let earlier = || {
+            let mut v = vec![format!("`{}` (the base)", self.base)];
+            v.extend(self.links[..before].iter().map(|l| format!("`{l}`")));
+            v.join(", ")
+        };
+        match self.links.iter().position(|&l| l == name) {
+            Some(k) if k < before => Ok(Some(k)),
+            Some(k) if k == before => Err(Invalid::new(
+                subject.clone(),
+                field,
+                format!("`{name}` is this joint's own link: a link cannot hang from itself"),
+                format!("give the link it hangs from: {}", earlier()),
+            )),
+            Some(k) => Err(Invalid::new(
+                subject.clone(),
+                field,
+                format!(
+                    "`{name}` is the link of joint {} `{}`, which comes after this joint: every joint must come after the joint of the link it hangs from",
+                    k + 1,
+                    self.joints[k]
+                ),
+                format!(
+                    "move this `[[joint]]` after joint `{}`, or hang it from an earlier link: {}",
+                    self.joints[k],
+                    earlier()
+                ),
+            )),
+            None => Err(Invalid::new(
+                subject.clone(),
+                field,
+                format!("`{name}` is neither the base nor a link of the robot"),
+                format!("give one of {}", earlier()),
+            )),
+        }
+    }
 }
 
 /// Joint i: kind, screw axis, limits and drive properties.
@@ -291,27 +414,30 @@ fn screw(subject: &Subject, kind: JointKind, j: &JointSpec) -> Result<Vector6<f6
     }
 }
 
-/// `G_i` of the link moved by joint i: its own keys, or the sum of its bodies.
-fn link_inertia(
+/// The spatial inertia of a link (`what` = `link`) or of the base (`base`): its own keys, or
+/// the sum of its bodies (`table`, for messages).
+fn inertia(
     subject: &Subject,
-    j: &JointSpec,
+    what: &str,
+    own: &BodySpec,
+    bodies: &[BodySpec],
+    table: &str,
     errors: &mut Vec<Invalid>,
 ) -> Option<SpatialInertia> {
-    let own = j.link.own_body();
-    if j.link.bodies.is_empty() {
-        return body_inertia(subject, "", &own, errors);
+    if bodies.is_empty() {
+        return body_inertia(subject, "", own, errors);
     }
     if !own.is_empty() {
         errors.push(Invalid::new(
             subject.clone(),
             "body",
-            "the link has both its own inertial keys (mass, inertia, shape, …) and `[[joint.link.body]]` tables",
-            "move the link's own mass and inertia into one more `[[joint.link.body]]`, or remove the bodies",
+            format!("the {what} has both its own inertial keys (mass, inertia, shape, …) and `{table}` tables"),
+            format!("move the {what}'s own mass and inertia into one more `{table}`, or remove the bodies"),
         ));
         return None;
     }
     let mut total = Some(SpatialInertia::zero());
-    for (k, b) in j.link.bodies.iter().enumerate() {
+    for (k, b) in bodies.iter().enumerate() {
         let prefix = match &b.name {
             Some(name) => format!("body[{name}]."),
             None => format!("body[{k}]."),

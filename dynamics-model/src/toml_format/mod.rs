@@ -1,5 +1,6 @@
-//! The TOML robot file: a serial chain written in the vocabulary of Modern Robotics,
-//! chapter 8 (`M_{i−1,i}`, `S_i`, `G_i`), for people to write and read.
+//! The TOML robot file: a kinematic tree (a serial chain unless said otherwise) written in
+//! the vocabulary of Modern Robotics, chapter 8 (`M_{i−1,i}`, `S_i`, `G_i`), for people to
+//! write and read.
 //!
 //! # The format
 //!
@@ -12,7 +13,16 @@
 //! description = "two joints"       # optional, free text
 //! gravity = [0.0, 0.0, -9.81]      # optional, in {0}, m/s²; default [0, 0, -9.81]
 //!
-//! # One [[joint]] per movable joint, root to tip. Joint i moves link i ([joint.link]).
+//! [base]                           # optional; default: a fixed, massless base called "base"
+//! name = "pedestal"                # optional; default "base"
+//! floating = false                 # optional: true puts a free 6-DoF joint between the
+//! #                                # world and the base (q = (p, quat, θ), see the crate docs)
+//! mass = 10.0                      # inertial keys as a link's (below), in the base frame {0};
+//! inertia = [0.1, 0.1, 0.1, 0, 0, 0]  # they count only when the base floats; none: massless
+//! com = [0, 0, -0.05]              # (also shape, spatial_inertia, [[base.body]], …)
+//!
+//! # One [[joint]] per movable joint. Joint i moves link i ([joint.link]); every joint comes
+//! # after the joint of the link it hangs from (depth-first order, as the vectors list them).
 //! [[joint]]
 //! name = "shoulder"                # required, unique
 //! type = "revolute"                # "revolute" or "prismatic"
@@ -29,8 +39,9 @@
 //! gear_ratio = 1.0                 # reserved, motor turns per joint turn: only 1
 //!
 //! [joint.link]                     # the link moved by this joint, with its frame {i}
-//! name = "upper_arm"               # required, unique
-//! home = { xyz = [0, 0, 0.5], rpy = [0, 0, 0] }  # M_{i−1,i}: pose of {i} in {i−1} at q = 0
+//! name = "upper_arm"               # required, unique (and not the base's name)
+//! home = { xyz = [0, 0, 0.5], rpy = [0, 0, 0] }  # M_{λ(i),i}: pose of {i} in its parent's
+//! #                                # frame at q = 0 (here the base's {0})
 //! mass = 2.0                       # kg
 //! inertia = [0.02, 0.02, 0.01, 0, 0, 0]          # [ixx, iyy, izz, ixy, ixz, iyz], kg·m²
 //! com = [0, 0, 0.1]                # optional: centre of mass in {i}; default [0, 0, 0]
@@ -38,6 +49,9 @@
 //! [[joint]]
 //! name = "elbow"
 //! type = "revolute"
+//! parent = "upper_arm"             # optional: the link this joint's link hangs from, the
+//! #                                # base or an earlier joint's link; default: the previous
+//! #                                # joint's link (the base for the first joint)
 //! axis = [0, 1, 0]
 //! point = [0, 0, 0.5]
 //!
@@ -60,12 +74,38 @@
 //! inertia = [0.001, 0.001, 0.001, 0, 0, 0]
 //! frame = { xyz = [0, 0, 0.4], rpy = [0, 1.5707963267948966, 0] }
 //!
+//! [[joint]]                        # a second branch: a camera on the upper arm
+//! name = "camera_pan"
+//! type = "revolute"
+//! parent = "upper_arm"             # not the previous joint's link (forearm): a tree
+//! axis = [0, 0, 1]
+//! point = [0.1, 0, 0.3]
+//!
+//! [joint.link]
+//! name = "camera"
+//! home = { xyz = [0.1, 0, -0.2] }  # in upper_arm's frame
+//! shape = { box = [0.05, 0.1, 0.05] }
+//! mass = 0.3
+//!
 //! [end_effector]                   # optional; default: name "end_effector", home = identity
 //! name = "tool"
-//! home = { xyz = [0, 0, 0.45] }    # M_{n,n+1}: pose of {n+1} in the last link's frame {n}
+//! parent = "forearm"               # optional: the link (or base) it is attached to;
+//! #                                # default: the last joint's link
+//! home = { xyz = [0, 0, 0.45] }    # its pose in that link's frame
 //! ```
 //!
-//! (In TOML, `[joint.link]` and `[[joint.link.body]]` belong to the `[[joint]]` above them.)
+//! (In TOML, `[joint.link]` and `[[joint.link.body]]` belong to the `[[joint]]` above them,
+//! `[[base.body]]` to `[base]`.)
+//!
+//! ## Trees and the base
+//!
+//! Link i hangs from `λ(i)`: its joint's `parent`, by default the previous joint's link. The
+//! joints are listed so that every joint comes after the joint of the link it hangs from
+//! (depth first is the usual order); a `parent` that is unknown, the joint's own link or a
+//! later joint's link is an error. `S_i` is always in {0}, the base frame at the home
+//! configuration. The base is fixed unless `[base] floating = true` (or the loader is asked
+//! for a floating base); its inertial keys are a link's, expressed in {0}, and are part of
+//! the dynamics only when it floats.
 //!
 //! ## Poses
 //!
@@ -76,8 +116,9 @@
 //!   lose digits). The loader requires a rigid transform (checked by
 //!   [`crate::validate`] to 1e-9).
 //!
-//! `home` is relative, `M_{i−1,i}`, as in the book's `Mlist`: frame {i} seen from {i−1}
-//! (link 0 is the base {0}).
+//! `home` is relative, `M_{λ(i),i}`, as in the book's `Mlist`: frame {i} seen from its
+//! parent's frame ({i−1} on a serial chain; the base's frame is {0}).
+//! `end_effector.home` is relative to the end effector's `parent` link.
 //!
 //! ## Inertia of a link
 //!
@@ -103,8 +144,11 @@
 //!    `mass` only. Place the solid with `frame`; `com` and `inertia` are not allowed.
 //! 3. **The 6×6 spatial inertia** in {b}: `spatial_inertia = [[…6…], …6 rows…]`,
 //!    `[[I_b, m[c]], [m[c]ᵀ, m·1₃]]` about the origin of {b} (any frame, Exercise 8.3).
-//! 4. **Several bodies**: `[[joint.link.body]]` tables, each with one of 1–3, its own
-//!    `frame` and an optional `name`; the link itself then has no inertial keys.
+//! 4. **Several bodies**: `[[joint.link.body]]` tables (`[[base.body]]` for the base), each
+//!    with one of 1–3, its own `frame` and an optional `name`; the link itself then has no
+//!    inertial keys.
+//!
+//! The base takes the same keys, in its frame {0}, and may have none (massless).
 //!
 //! # Errors
 //!

@@ -22,7 +22,10 @@ pub(crate) struct RobotFile {
     /// Gravity in {0} (3 numbers).
     #[serde(default)]
     pub gravity: Option<Vec<f64>>,
-    /// The movable joints, root to tip (`[[joint]]`).
+    /// The base `[base]`.
+    #[serde(default)]
+    pub base: Option<BaseSpec>,
+    /// The movable joints, every one after the joint of the link it hangs from (`[[joint]]`).
     #[serde(default, rename = "joint")]
     pub joints: Vec<JointSpec>,
     /// The end-effector frame `[end_effector]`.
@@ -45,6 +48,8 @@ pub(crate) struct JointSpec {
     pub name: String,
     #[serde(rename = "type")]
     pub kind: KindSpec,
+    /// The link this joint's link hangs from (an earlier joint's link, or the base).
+    pub parent: Option<String>,
     /// `S_i` in {0} (6 numbers).
     pub screw: Option<Vec<f64>>,
     /// Axis direction in {0} (3 numbers).
@@ -132,7 +137,7 @@ impl BodySpec {
 #[serde(deny_unknown_fields)]
 pub(crate) struct LinkSpec {
     pub name: String,
-    /// `M_{i−1,i}`.
+    /// `M_{λ(i),i}`: in the parent link's frame.
     pub home: toml::Value,
     pub frame: Option<toml::Value>,
     pub mass: Option<f64>,
@@ -164,12 +169,51 @@ impl LinkSpec {
     }
 }
 
+/// `[base]`: the body keys of [`BodySpec`] (repeated, as in [`LinkSpec`]), plus the base's
+/// name, whether it floats, and its bodies.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BaseSpec {
+    pub name: Option<String>,
+    pub floating: Option<bool>,
+    pub frame: Option<toml::Value>,
+    pub mass: Option<f64>,
+    pub density: Option<f64>,
+    pub shape: Option<ShapeSpec>,
+    pub com: Option<Vec<f64>>,
+    pub inertia: Option<Vec<f64>>,
+    pub inertia_about: Option<AboutSpec>,
+    pub spatial_inertia: Option<Vec<Vec<f64>>>,
+    /// `[[base.body]]`.
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<BodySpec>,
+}
+
+impl BaseSpec {
+    /// The base's own inertial keys as a body.
+    pub fn own_body(&self) -> BodySpec {
+        BodySpec {
+            name: None,
+            frame: self.frame.clone(),
+            mass: self.mass,
+            density: self.density,
+            shape: self.shape.clone(),
+            com: self.com.clone(),
+            inertia: self.inertia.clone(),
+            inertia_about: self.inertia_about,
+            spatial_inertia: self.spatial_inertia.clone(),
+        }
+    }
+}
+
 /// `[end_effector]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct EndEffectorSpec {
     pub name: Option<String>,
-    /// `M_{n,n+1}` (default identity).
+    /// The link it is attached to (default: the last joint's link).
+    pub parent: Option<String>,
+    /// Its pose in the parent link's frame (default identity).
     pub home: Option<toml::Value>,
 }
 
