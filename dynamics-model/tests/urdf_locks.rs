@@ -155,7 +155,10 @@ fn a_mimic_follower_in_its_own_branch_is_refused_until_it_or_its_leader_is_locke
         ),
     ]);
     let m = error_of(&text, "m.urdf", &LoadOptions::default());
-    assert!(m.contains("--lock follow=0") && m.contains("joint `follow`"), "{m}");
+    assert!(
+        m.contains("--lock follow=0") && m.contains("joint `follow`"),
+        "{m}"
+    );
     let r = load_text(&text, "m.urdf", &suggested(&m)).expect("follower locked");
     assert_eq!(r.joint_names(), ["a1", "lead"]);
     let r = load_text(&text, "m.urdf", &locks(&[("lead", 0.5)])).expect("leader locked");

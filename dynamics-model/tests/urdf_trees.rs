@@ -40,7 +40,11 @@ fn load(name: &str) -> (Robot, Value) {
 
 /// The reference's joints without the free flyer (`root_joint`), and how many were left out.
 fn movable(json: &Value) -> (Vec<&Value>, usize) {
-    let all: Vec<&Value> = json["pinocchio_model"].as_array().expect("model").iter().collect();
+    let all: Vec<&Value> = json["pinocchio_model"]
+        .as_array()
+        .expect("model")
+        .iter()
+        .collect();
     let skip = usize::from(json["floating"].as_bool().expect("floating"));
     (all[skip..].to_vec(), skip)
 }
@@ -117,7 +121,14 @@ fn bodies_match_pinocchios_after_merging_fixed_links() {
             let scale = y.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
             let e = assert_close(&what, x, y) / scale;
             let kind = what.rsplit(' ').next().unwrap_or("");
-            let w = worst.entry(["mass", "com", "com-inertia", "home"].into_iter().find(|k| *k == kind).unwrap_or("other")).or_default();
+            let w = worst
+                .entry(
+                    ["mass", "com", "com-inertia", "home"]
+                        .into_iter()
+                        .find(|k| *k == kind)
+                        .unwrap_or("other"),
+                )
+                .or_default();
             *w = w.max(e);
         };
         let mut bodies: Vec<(String, dynamics_model::SpatialInertia, &Value)> = robot
@@ -260,15 +271,17 @@ fn floating_joints_elsewhere_are_refused_by_name() {
         "heavy.urdf",
         &LoadOptions::default(),
     );
-    for part in ["heavy.urdf: ", "joint `root`", "field `type`", "`floating`", "root joint"] {
+    for part in [
+        "heavy.urdf: ",
+        "joint `root`",
+        "field `type`",
+        "`floating`",
+        "root joint",
+    ] {
         assert!(m.contains(part), "lacks {part:?}: {m}");
     }
     // Below a movable joint.
-    let text = robot_text("trees/solo12.urdf").replacen(
-        "type=\"fixed\"",
-        "type=\"floating\"",
-        1,
-    );
+    let text = robot_text("trees/solo12.urdf").replacen("type=\"fixed\"", "type=\"floating\"", 1);
     let m = error_of(&text, "deep.urdf", &LoadOptions::default());
     assert!(
         m.contains("joint `FL_ANKLE`") && m.contains("field `type`"),
@@ -293,12 +306,18 @@ fn the_tip_is_any_link_of_the_tree() {
     assert_eq!(r.end_effector.parent, Some(r.dof() - 1));
     // A link of another branch.
     let r = load_text(&text, file, &tip("arm_left_4_link")).expect("arm");
-    let i = r.joint_names().iter().position(|&n| n == "arm_left_4_joint");
+    let i = r
+        .joint_names()
+        .iter()
+        .position(|&n| n == "arm_left_4_joint");
     assert_eq!(r.end_effector.parent, i);
     assert_eq!(r.end_effector.home, Matrix4::identity());
     // A link welded to a body (the left gripper's tool frame) gets its pose in that body.
     let r = load_text(&text, file, &tip("wrist_left_ft_tool_link")).expect("tool");
-    let i = r.joint_names().iter().position(|&n| n == "arm_left_7_joint");
+    let i = r
+        .joint_names()
+        .iter()
+        .position(|&n| n == "arm_left_7_joint");
     assert_eq!(r.end_effector.parent, i);
     assert_ne!(r.end_effector.home, Matrix4::identity());
     // The base itself, and a link welded to the fixed base (a leg, locked in this file).
@@ -329,7 +348,11 @@ fn locks_freeze_branches_into_their_parent_body() {
     let mass = |r: &Robot| r.links.iter().map(|l| l.inertia.mass()).sum::<f64>();
     assert!((mass(&r) - mass(&free)).abs() < 1e-12 * mass(&free));
     // The parents still point at the right bodies: head_1 hangs from torso_2.
-    let head = r.joint_names().iter().position(|&n| n == "head_1_joint").unwrap();
+    let head = r
+        .joint_names()
+        .iter()
+        .position(|&n| n == "head_1_joint")
+        .unwrap();
     let torso = r.joint_names().iter().position(|&n| n == "torso_2_joint");
     assert_eq!(r.links[head].parent, torso);
 }
