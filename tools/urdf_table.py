@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Write docs/urdf-compatibility.md: `dynamics-gen joints FILE` on every URDF of
-example-robot-data, and, for the refused trees and mimic joints, once more with the locks the
-error suggests (one round).
+example-robot-data; for the files that load, once more with `--floating-base`; for the
+refused mimic joints, once more with the locks the error suggests (one round).
 
     python3 -m venv /tmp/pinvenv && /tmp/pinvenv/bin/pip install example-robot-data
     cargo build --release -p dynamics-gen
     /tmp/pinvenv/bin/python tools/urdf_table.py --bin target/release/dynamics-gen
 
-No third-party file is copied; the table names files relative to the package's robots/.
+(`--urdf-dir DIR/cmeel.prefix/share/example-robot-data/robots` reads an unpacked wheel
+instead.) No third-party file is copied; the table names files relative to the package's
+robots/.
 """
 
 import argparse
@@ -31,10 +33,12 @@ def default_urdf_dir():
     return None
 
 
-def joints(binary, path, locks=()):
+def joints(binary, path, locks=(), floating=False):
     cmd = [binary, "joints", path]
     for lock in locks:
         cmd += ["--lock", lock]
+    if floating:
+        cmd.append("--floating-base")
     p = subprocess.run(cmd, capture_output=True, text=True)
     return p.returncode, p.stdout, p.stderr
 
@@ -42,8 +46,8 @@ def joints(binary, path, locks=()):
 def reason(first_line):
     """A short category for a refusal's first error line."""
     for key, name in [
-        ("trees are not supported", "tree"),
         ("field `mimic`", "mimic joint"),
+        ("field `inertial.inertia`", "inertia"),
         ("no movable joint", "no movable joint"),
         ("has no links", "no links"),
     ]:
@@ -56,8 +60,6 @@ def short(first_line, path, n=110):
     """The first error line without `error: `, the file name and the fix, cut at `n`."""
     m = first_line.removeprefix("error: ").replace(path + ": ", "").replace(path, "FILE")
     m = m.split("; fix:")[0]
-    m = re.sub(r" \(through .*\)", "", m)  # the branch lists are long
-    m = m.replace("; trees are not supported yet, only serial chains", "")
     return m if len(m) <= n else m[: n - 3] + "..."
 
 
@@ -80,6 +82,20 @@ def suggested_locks(stderr):
     return [f"{n}={v}" for n, v in out.items()]
 
 
+def loaded(out):
+    """`N joints`, `, tree` and `, floating base` of a `joints` listing."""
+    lines = out.splitlines()
+    n = sum(not line.startswith("(floating base)") for line in lines)
+    tree = any("hangs from" in line for line in lines)
+    floating = any(line.startswith("(floating base)") for line in lines)
+    return n, tree, floating
+
+
+def describe(out):
+    n, tree, floating = loaded(out)
+    return f"{n} joints" + (", tree" if tree else "") + (", floating base" if floating else "")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bin", default=os.path.join(REPO, "target", "release", "dynamics-gen"))
@@ -89,71 +105,98 @@ def main():
     try:
         version = importlib.metadata.version("example-robot-data")
     except importlib.metadata.PackageNotFoundError:
-        version = "unknown"
+        # An unpacked wheel: <root>/cmeel.prefix/share/example-robot-data/robots beside
+        # <root>/example_robot_data-VERSION.dist-info.
+        root = os.path.join(args.urdf_dir, "..", "..", "..", "..")
+        found = glob.glob(os.path.join(root, "example_robot_data-*.dist-info"))
+        version = found[0].split("example_robot_data-")[-1][: -len(".dist-info")] if found else "unknown"
     files = sorted(glob.glob(os.path.join(args.urdf_dir, "**", "*.urdf"), recursive=True))
     rows, counts, locked = [], collections.Counter(), collections.Counter()
-    still = collections.Counter()
+    still, kinds = collections.Counter(), collections.Counter()
     for path in files:
         rel = os.path.relpath(path, args.urdf_dir)
         rc, out, err = joints(args.bin, path)
         if rc == 0:
             counts["loads"] += 1
-            rows.append((rel, f"loads ({len(out.splitlines())} joints)", "", ""))
+            _, tree, floating = loaded(out)
+            kinds["tree"] += tree
+            kinds["floating"] += floating
+            if floating:
+                fb = "floats already (floating root joint)"
+            else:
+                rc2, _, err2 = joints(args.bin, path, floating=True)
+                if rc2 == 0:
+                    kinds["floats"] += 1
+                    fb = "loads"
+                else:
+                    line = err2.splitlines()[0]
+                    still["--floating-base: " + field(line)] += 1
+                    fb = "refused: " + short(line, path, 90)
+            rows.append((rel, f"loads ({describe(out)})", "", fb))
             continue
         first = err.splitlines()[0] if err else "(no message)"
         why = reason(first)
         counts[why] += 1
         retry, desc = "", short(first, path)
-        if why == "tree":
-            points = sum("trees are not supported" in line for line in err.splitlines())
-            desc += f" ({points} branch point{'s' * (points > 1)} reported)"
-        if why in ("tree", "mimic joint"):
+        if why == "mimic joint":
             locks = suggested_locks(err)
             rc2, out2, err2 = joints(args.bin, path, locks)
             if rc2 == 0:
                 locked[why] += 1
-                retry = f"loads ({len(out2.splitlines())} joints) with {len(locks)} locks"
+                retry = f"loads ({describe(out2)}) with {len(locks)} locks"
             else:
                 line = err2.splitlines()[0]
                 still[field(line)] += 1
                 retry = "still refused: " + short(line, path, 90)
         rows.append((rel, f"refused: {why}", desc, retry))
     total = len(files)
-    summary = [f"- {total} files: {counts['loads']} load, {total - counts['loads']} refused"]
-    for why in ["tree", "mimic joint", "no movable joint", "no links", "other"]:
+    summary = [
+        f"- {total} files: {counts['loads']} load, {total - counts['loads']} refused",
+        f"  - of those that load: {kinds['tree']} trees, {kinds['floating']} on a floating root "
+        f"joint; {kinds['floats']} of the others also load with `--floating-base`",
+    ]
+    names = {"inertia": "physically impossible inertia (field `inertial.inertia`)"}
+    for why in ["mimic joint", "inertia", "no movable joint", "no links", "other"]:
         if counts[why]:
             extra = ""
-            if why in ("tree", "mimic joint"):
+            if why == "mimic joint":
                 extra = f" ({locked[why]} of them load with the suggested locks, one round)"
-            summary.append(f"  - {why}: {counts[why]}{extra}")
+            summary.append(f"  - refused, {names.get(why, why)}: {counts[why]}{extra}")
     for f, k in still.items():
-        summary.append(f"  - with the suggested locks, still refused on field `{f}`: {k}")
+        if f.startswith("--floating-base: "):
+            f = f.removeprefix("--floating-base: ")
+            summary.append(f"  - loads, but refused with `--floating-base` on field `{f}`: {k}")
+        else:
+            summary.append(f"  - with the suggested locks, still refused on field `{f}`: {k}")
     lines = [
         "# URDF compatibility: example-robot-data",
         "",
         f"`dynamics-gen joints FILE` on every `.urdf` of the PyPI package example-robot-data "
         f"{version} (its `share/example-robot-data/robots/` directory), made by "
         "`tools/urdf_table.py` (re-run it to refresh this page; no URDF is copied into this repo).",
-        "For the trees and mimic joints, the last column runs the same command again with the locks "
-        "the error suggests (`--lock` of every error line, once).",
+        "For the files that load, the last column runs it again with `--floating-base`; for the "
+        "mimic joints, with the locks the error suggests (`--lock` of every error line, once).",
         "",
-        "Trees (legged robots, humanoids, hands) are refused with \"trees are not supported yet\" "
-        "and lock suggestions. "
+        "Kinematic trees (legged robots, humanoids, hands) load whole, in Pinocchio's joint order; "
+        "a URDF whose root joint is `floating` (a massless `world` link above the base) loads on a "
+        "floating base, and `--floating-base` floats any other. "
         + (
             "No file is refused because of visual, collision or extension elements: every "
-            "refusal is about the kinematic structure."
+            "refusal is about the kinematic structure or the inertias."
             if counts["other"] == 0
             else f"{counts['other']} files are refused for other reasons (see the table)."
         ),
         "",
         *summary,
         "",
-        "A refusal with the suggested locks is the loader's physical check of each link's "
-        "inertia on the kept chain (triangle inequality, positive semidefinite, no rotational "
-        "inertia without mass), which Pinocchio does not make: the locks themselves were "
-        "accepted and left one serial chain.",
+        "A refusal on `inertial.inertia` is the loader's physical check of each URDF link's "
+        "inertia on a moving body (triangle inequality, positive semidefinite, no rotational "
+        "inertia without mass), which Pinocchio does not make; on a fixed base the links welded "
+        "to the base are not checked (they never move), with `--floating-base` they are. A free "
+        "movable `<mimic>` joint is refused (coupled coordinates are not modelled yet): locking "
+        "it, or its leader, removes it.",
         "",
-        "| file (in `robots/`) | result | why (first error line, shortened) | with the suggested locks |",
+        "| file (in `robots/`) | result | why (first error line, shortened) | with `--floating-base`, or with the suggested locks |",
         "|---|---|---|---|",
     ]
     for rel, result, why, retry in rows:

@@ -203,12 +203,15 @@ fn defaults_make_a_fixed_massless_base_and_a_chain() {
     assert_eq!(r.end_effector.parent, Some(4));
     // A `[base]` with a name only is massless and fixed; `parent` may name it.
     let r = load(
-        &edit("mass = 5.0\ninertia = [0.05, 0.04, 0.03, 0, 0, 0]\ncom = [0, 0, 0.05]\n", "")
-            .replace("floating = true\n", "")
-            .replace(
-                "name = \"right_shoulder\"\ntype = \"revolute\"\nparent = \"torso\"",
-                "name = \"right_shoulder\"\ntype = \"revolute\"\nparent = \"pelvis\"",
-            ),
+        &edit(
+            "mass = 5.0\ninertia = [0.05, 0.04, 0.03, 0, 0, 0]\ncom = [0, 0, 0.05]\n",
+            "",
+        )
+        .replace("floating = true\n", "")
+        .replace(
+            "name = \"right_shoulder\"\ntype = \"revolute\"\nparent = \"torso\"",
+            "name = \"right_shoulder\"\ntype = \"revolute\"\nparent = \"pelvis\"",
+        ),
     )
     .expect("named base");
     assert!(!r.base.floating);
@@ -219,8 +222,13 @@ fn defaults_make_a_fixed_massless_base_and_a_chain() {
         floating_base: true,
         ..LoadOptions::default()
     };
-    let r = from_str(&format!("name = \"chain\"\n{text}"), Format::Toml, FILE, &floating)
-        .expect("floating");
+    let r = from_str(
+        &format!("name = \"chain\"\n{text}"),
+        Format::Toml,
+        FILE,
+        &floating,
+    )
+    .expect("floating");
     assert!(r.base.floating);
 }
 
@@ -312,7 +320,10 @@ fn base_inertial_errors_name_the_base_and_the_field() {
         "triangle inequality",
     );
     invalid(
-        &edit("com = [0, 0, 0.05]\n", "com = [0, 0, 0.05]\ndensity = 1000.0\n"),
+        &edit(
+            "com = [0, 0, 0.05]\n",
+            "com = [0, 0, 0.05]\ndensity = 1000.0\n",
+        ),
         "link `pelvis`",
         "density",
         "without a `shape`",
@@ -341,8 +352,16 @@ fn base_inertial_errors_name_the_base_and_the_field() {
 #[test]
 fn base_schema_errors_are_parse_errors_in_the_base() {
     for (from, to, parts) in [
-        ("floating = true", "floating = \"yes\"", &["invalid type", "[base] `pelvis`"][..]),
-        ("mass = 5.0", "mas = 5.0", &["unknown field `mas`", "[base] `pelvis`"][..]),
+        (
+            "floating = true",
+            "floating = \"yes\"",
+            &["invalid type", "[base] `pelvis`"][..],
+        ),
+        (
+            "mass = 5.0",
+            "mas = 5.0",
+            &["unknown field `mas`", "[base] `pelvis`"][..],
+        ),
         (
             "parent = \"left_forearm\"",
             "parent = 3",

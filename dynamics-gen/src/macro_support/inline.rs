@@ -396,7 +396,8 @@ fn joint(
         match item {
             Item::Entry(e) => {
                 let key = e.key.to_string();
-                let ty = schema::lookup(JOINT_KEYS, &key).or_else(|| schema::lookup(&[PARENT], &key));
+                let ty =
+                    schema::lookup(JOINT_KEYS, &key).or_else(|| schema::lookup(&[PARENT], &key));
                 if let Some(ty) = ty {
                     if seen.contains(&key) {
                         errors.at(
@@ -599,7 +600,11 @@ fn bodies_into(
     if bodies.is_empty() {
         return;
     }
-    spans.insert(part.clone(), format!("{root}body"), bodies[0].header.clone());
+    spans.insert(
+        part.clone(),
+        format!("{root}body"),
+        bodies[0].header.clone(),
+    );
     let mut out = Vec::new();
     for (k, b) in bodies.into_iter().enumerate() {
         let name = block_name(&b.args, "body", errors);
@@ -845,7 +850,14 @@ mod tests {
         let places = base_places(
             quote! { base pelvis { floating: true, shape: { box: [1, 2, 3] }, density: 10,
             body hip { mass: 1, inertia: [1, 1, 1, 0, 0, 0] } } },
-            &["density", "inertia", "mass", "body[hip].inertia", "floating", "com"],
+            &[
+                "density",
+                "inertia",
+                "mass",
+                "body[hip].inertia",
+                "floating",
+                "com",
+            ],
         );
         assert_eq!(
             places,

@@ -178,7 +178,14 @@ fn base(spec: Option<&BaseSpec>, errors: &mut Vec<Invalid>) -> Base {
     let inertia = if own.is_empty() && spec.bodies.is_empty() {
         Some(SpatialInertia::zero())
     } else {
-        inertia(&subject, "base", &own, &spec.bodies, "[[base.body]]", errors)
+        inertia(
+            &subject,
+            "base",
+            &own,
+            &spec.bodies,
+            "[[base.body]]",
+            errors,
+        )
     };
     Base {
         name,
