@@ -88,8 +88,11 @@ pub fn robot(
         }
         // Each URDF link of a moving body must be a physical rigid body on its own, so that
         // an error names the link as the file has it (merged bodies would hide it). A fixed
-        // base never moves: its links are not checked.
-        if b > 0 || floating {
+        // base never moves: its links are not checked. A floating base is checked as the one
+        // merged body it is (`validate` of `Base::inertia`): legged robots' files often hang
+        // a dummy link of 1e-6 kg with a non-physical inertia on the base (ANYmal, Go1, B1),
+        // which Pinocchio loads, and which changes nothing measurable in the merged body.
+        if b > 0 {
             errors.extend(crate::validate::check_mass_and_inertia(
                 Subject::Link {
                     index: None,

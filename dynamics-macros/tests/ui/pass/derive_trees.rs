@@ -1,0 +1,27 @@
+// Kinematic trees through `#[derive(Dynamics)]`: a two-armed torso on a fixed base, and the
+// Solo-12 quadruped on a floating base (q = (p, quat, θ), ν = (ω_b, v_b, θ̇)).
+use dynamics_macros::Dynamics;
+use nalgebra::SVector;
+
+#[derive(Dynamics)]
+#[dynamics(file = "dynamics-macros/tests/ui/fixtures/branches.urdf")]
+pub struct TwoArms;
+
+#[derive(Dynamics)]
+#[dynamics(file = "tests/data/robots/trees/solo12.urdf", floating_base)]
+pub struct Solo;
+
+fn main() {
+    assert_eq!((TwoArms::NQ, TwoArms::NV), (TwoArms::DOF, TwoArms::DOF));
+    assert_eq!((Solo::DOF, Solo::NQ, Solo::NV), (12, 19, 18));
+    let mut q = SVector::<f64, 19>::zeros();
+    q[6] = 1.0; // the identity quaternion (x, y, z, w)
+    let v = SVector::<f64, 18>::zeros();
+    // At rest, level, the base rows of g are the weight: force (m·9.81 up) in the base frame.
+    let g = Solo.gravity(&q);
+    assert!(g[5] > 0.0 && g[3].abs() < 1e-12 && g[4].abs() < 1e-12);
+    let a = Solo.forward_dynamics(&q, &v, &g);
+    assert!(a.norm() < 1e-9);
+    let m = Solo.mass_matrix(&q);
+    assert_eq!(m[(6, 9)], 0.0); // front-left and front-right hips: different branches
+}
