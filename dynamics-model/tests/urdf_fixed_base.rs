@@ -1,7 +1,7 @@
 //! Links welded to the fixed base never move, so their inertias do not enter the dynamics and
 //! are not checked (real files carry meaningless ones there, e.g. Unitree's B1-Z1 or TIAGo's
-//! antennas); the same inertia on a moving link, or on the base when it floats, is an error
-//! naming that link.
+//! antennas); the same inertia on a moving link is an error naming that link, and on a
+//! floating base the merged base body must be physical.
 
 use dynamics_model::{load::from_str, Format, LoadOptions};
 
@@ -59,14 +59,22 @@ fn the_same_inertia_on_a_floating_base_is_an_error_naming_it() {
     let msg = from_str(URDF, Format::Urdf, "float.urdf", &floating)
         .unwrap_err()
         .to_string();
+    // The base is checked as one merged body (here: this link alone).
     assert!(
         msg.contains("float.urdf") && msg.contains("link `base`"),
         "{msg}"
     );
-    assert!(
-        msg.contains("inertial.inertia") && msg.contains("triangle"),
-        "{msg}"
+    assert!(msg.contains("inertia") && msg.contains("triangle"), "{msg}");
+    // The same dummy link welded to a physical trunk (as ANYmal, Go1 and B1 have it): the
+    // merged base is physical, and loads.
+    let with_trunk = URDF.replace(
+        r#"<link name="l1">"#,
+        r#"<link name="trunk"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.2" iyz="0" izz="0.25"/></inertial></link>
+  <joint name="weld" type="fixed"><parent link="base"/><child link="trunk"/></joint>
+  <link name="l1">"#,
     );
+    let robot = from_str(&with_trunk, Format::Urdf, "trunk.urdf", &floating).expect("merged base");
+    assert!((robot.base.inertia.mass() - (5.0 + 1e-6)).abs() < 1e-12);
     // A physical inertia on the same base loads, and floats.
     let fine = URDF.replace(
         r#"<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="3e-6"/>"#,

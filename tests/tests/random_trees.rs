@@ -18,7 +18,7 @@ fn check(seed: u64, what: &str, x: &[f64], y: &[f64]) -> f64 {
 /// Tree `seed`: 1–40 bodies (most between 10 and 40), a quarter prismatic, a floating base
 /// for odd seeds.
 pub fn tree(seed: u64) -> dynamics_model::Robot {
-    let dof = if seed % 5 == 0 {
+    let dof = if seed.is_multiple_of(5) {
         1 + (seed as usize / 5) % 9
     } else {
         10 + (seed as usize * 7) % 31

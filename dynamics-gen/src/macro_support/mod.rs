@@ -41,6 +41,9 @@
 //!         inertia: [4, 4, 0, 0, 0, 0],
 //!     },
 //!     end_effector bob { home: { xyz: [0, 0, 0] } },  // optional: M_{n,n+1}, default identity
+//!     // Trees: `parent: LINK` in a joint (default: the previous joint's link) and in the end
+//!     // effector; `base NAME { floating: true, mass: …, inertia: … }` for a floating base
+//!     // (see `inline` for every key).
 //! }
 //! ```
 //!

@@ -74,21 +74,37 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
 /// The answer to one line, or what is wrong with it.
 fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
     let state: State = serde_json::from_str(line).map_err(|e| json_message(&e))?;
-    let n = robot.dof();
-    let joint_vector = |name: &str, v: Option<Vec<f64>>| -> Result<Vec<f64>, String> {
+    let (nq, nv) = (robot.nq(), robot.nv());
+    let what = |len: usize| {
+        if robot.base.floating {
+            format!(
+                "{len} (a floating base: q = (p, quat x y z w, {n} joints), velocities, accelerations and forces = (base twist or wrench, {n} joints))",
+                n = robot.dof()
+            )
+        } else {
+            format!("{len} joints")
+        }
+    };
+    let vector = |name: &str, v: Option<Vec<f64>>, len: usize| -> Result<Vec<f64>, String> {
         match v {
-            None => Ok(vec![0.0; n]),
-            Some(v) if v.len() == n => Ok(v),
+            None => Ok(vec![0.0; len]),
+            Some(v) if v.len() == len => Ok(v),
             Some(v) => Err(format!(
-                "\"{name}\" has {} values, the robot has {n} joints",
-                v.len()
+                "\"{name}\" has {} values, the robot has {}",
+                v.len(),
+                what(len)
             )),
         }
     };
-    let q = joint_vector("q", Some(state.q))?;
-    let qd = joint_vector("qd", state.qd)?;
-    let qdd = joint_vector("qdd", state.qdd)?;
-    let tau = joint_vector("tau", state.tau)?;
+    let q = vector("q", Some(state.q), nq)?;
+    let qd = vector("qd", state.qd, nv)?;
+    let qdd = vector("qdd", state.qdd, nv)?;
+    let tau = vector("tau", state.tau, nv)?;
+    if robot.base.floating && q[3..7].iter().all(|x| *x == 0.0) {
+        return Err(
+            "\"q\"[3..7], the base quaternion (x, y, z, w), is zero: give any non-zero quaternion (it is normalised), e.g. [0, 0, 0, 1]".into(),
+        );
+    }
     let f_tip = match state.f_tip {
         None => Vector6::zeros(),
         Some(v) if v.len() == 6 => Vector6::from_column_slice(&v),
