@@ -103,6 +103,46 @@ pub fn random_inertia(rng: &mut Rng) -> SpatialInertia {
     SpatialInertia::from_com_frame(m, i_com, &t_ac)
 }
 
+/// Body i of a random robot, hanging from `parent` whose home pose in {0} is `parent_pose`:
+/// joint i (an axis through a point near the link's origin, in {0}; prismatic with
+/// probability `prismatic`; limits ±3), link i with its home and inertia, and the link's
+/// home pose in {0}. The one draw order of [`random_chain`] and [`random_tree`].
+fn random_body(
+    rng: &mut Rng,
+    i: usize,
+    parent: Option<usize>,
+    parent_pose: &Matrix4<f64>,
+    prismatic: f64,
+) -> (Joint, Link, Matrix4<f64>) {
+    let home = rp_to_trans(&rng.rotation(), &rng.vector(0.4));
+    let t0 = parent_pose * home;
+    let kind = if rng.unit() < prismatic {
+        JointKind::Prismatic
+    } else {
+        JointKind::Revolute
+    };
+    let dir = rng.unit_vector();
+    let point = t0.fixed_view::<3, 1>(0, 3).into_owned() + rng.vector(0.1);
+    let screw = match kind {
+        JointKind::Revolute => twist(&dir, &(-dir.cross(&point))),
+        JointKind::Prismatic => twist(&Vector3::zeros(), &dir),
+    };
+    let mut joint = Joint::new(format!("j{}", i + 1), kind, screw);
+    joint.limits = Some(JointLimits {
+        lower: -3.0,
+        upper: 3.0,
+        velocity: None,
+        effort: None,
+    });
+    let link = Link {
+        name: format!("l{}", i + 1),
+        parent,
+        home,
+        inertia: random_inertia(rng),
+    };
+    (joint, link, t0)
+}
+
 /// A random serial chain (see the module docs), named `random_<seed>`.
 pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
     let mut rng = Rng::new(seed);
@@ -110,34 +150,10 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
     let mut links = Vec::with_capacity(spec.dof);
     let mut t0 = Matrix4::identity();
     for i in 0..spec.dof {
-        let home = rp_to_trans(&rng.rotation(), &rng.vector(0.4));
-        t0 *= home;
-        let kind = if rng.unit() < spec.prismatic {
-            JointKind::Prismatic
-        } else {
-            JointKind::Revolute
-        };
-        // An axis through a point near the link's origin, in {0}.
-        let dir = rng.unit_vector();
-        let point = t0.fixed_view::<3, 1>(0, 3).into_owned() + rng.vector(0.1);
-        let screw = match kind {
-            JointKind::Revolute => twist(&dir, &(-dir.cross(&point))),
-            JointKind::Prismatic => twist(&Vector3::zeros(), &dir),
-        };
-        let mut joint = Joint::new(format!("j{}", i + 1), kind, screw);
-        joint.limits = Some(JointLimits {
-            lower: -3.0,
-            upper: 3.0,
-            velocity: None,
-            effort: None,
-        });
+        let (joint, link, pose) = random_body(&mut rng, i, i.checked_sub(1), &t0, spec.prismatic);
+        t0 = pose;
         joints.push(joint);
-        links.push(Link {
-            name: format!("l{}", i + 1),
-            parent: i.checked_sub(1),
-            home,
-            inertia: random_inertia(&mut rng),
-        });
+        links.push(link);
     }
     let tip = rp_to_trans(&rng.rotation(), &rng.vector(0.2));
     let gravity = rng.vector(1.0).normalize() * 9.81;
@@ -199,34 +215,11 @@ pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
             None => open.clear(),
         }
         open.push(i);
-        let home = rp_to_trans(&rng.rotation(), &rng.vector(0.4));
-        let t0 = parent.map_or(Matrix4::identity(), |p| poses[p]) * home;
-        poses.push(t0);
-        let kind = if rng.unit() < spec.prismatic {
-            JointKind::Prismatic
-        } else {
-            JointKind::Revolute
-        };
-        let dir = rng.unit_vector();
-        let point = t0.fixed_view::<3, 1>(0, 3).into_owned() + rng.vector(0.1);
-        let screw = match kind {
-            JointKind::Revolute => twist(&dir, &(-dir.cross(&point))),
-            JointKind::Prismatic => twist(&Vector3::zeros(), &dir),
-        };
-        let mut joint = Joint::new(format!("j{}", i + 1), kind, screw);
-        joint.limits = Some(JointLimits {
-            lower: -3.0,
-            upper: 3.0,
-            velocity: None,
-            effort: None,
-        });
+        let parent_pose = parent.map_or(Matrix4::identity(), |p| poses[p]);
+        let (joint, link, pose) = random_body(&mut rng, i, parent, &parent_pose, spec.prismatic);
+        poses.push(pose);
         joints.push(joint);
-        links.push(Link {
-            name: format!("l{}", i + 1),
-            parent,
-            home,
-            inertia: random_inertia(&mut rng),
-        });
+        links.push(link);
     }
     let tip = rp_to_trans(&rng.rotation(), &rng.vector(0.2));
     let gravity = rng.vector(1.0).normalize() * 9.81;

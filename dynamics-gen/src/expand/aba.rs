@@ -33,7 +33,7 @@
 //! ([`LinkForce`]) can each be written out in equal forms; the caller picks the cheapest.
 
 use super::frames::BodyInertia;
-use super::rnea::{BaseMotion, LinkForce};
+use super::rnea::{link_force, BaseMotion, LinkForce};
 use super::spatial::{Inertia, JointMotion, ShiftForm, Spatial, SymInertia, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
@@ -224,34 +224,13 @@ pub fn aba(
     out
 }
 
-/// The bias wrench `−[ad_V]ᵀ G V` of a body with inertia `gi` and twist `v`.
+/// The bias wrench `−[ad_V]ᵀ G V` of a body with inertia `gi` and twist `v`: the link wrench
+/// of Newton–Euler at zero acceleration (its zero terms fold away as they are built).
 fn bias_force(g: &mut ExprGraph, gi: &Inertia, vi: &Spatial, bias: LinkForce) -> Spatial {
-    match bias {
-        LinkForce::Spatial => {
-            // −[ad_V]ᵀ G V = (ω × k + v × l, ω × l) with (k, l) = G V.
-            let p = gi.apply(g, vi);
-            let wk = g.cross(vi.ang, p.ang);
-            let vl = g.cross(vi.lin, p.lin);
-            let wl = g.cross(vi.ang, p.lin);
-            Spatial {
-                ang: g.add3(wk, vl),
-                lin: wl,
-            }
-        }
-        LinkForce::Classical => {
-            // The same through the classical acceleration a = ω × v of the origin (V̇ = 0):
-            // (ω × I ω + h × a, m a + ω × (ω × h)).
-            let a = g.cross(vi.ang, vi.lin);
-            let iw = gi.rotational(g, vi.ang);
-            let w_iw = g.cross(vi.ang, iw);
-            let hxa = g.cross(gi.h, a);
-            let ma = g.scale3(gi.m, a);
-            let wxh = g.cross(vi.ang, gi.h);
-            let wwh = g.cross(vi.ang, wxh);
-            Spatial {
-                ang: g.add3(w_iw, hxa),
-                lin: g.add3(ma, wwh),
-            }
-        }
-    }
+    let zero = g.zero3();
+    let at_rest = Spatial {
+        ang: zero,
+        lin: zero,
+    };
+    link_force(g, gi, vi, &at_rest, bias)
 }
