@@ -27,6 +27,8 @@ pub enum Subject {
     },
     /// The end-effector frame {n+1}.
     EndEffector,
+    /// A named frame ([`crate::Robot::frames`]).
+    Frame(String),
 }
 
 impl fmt::Display for Subject {
@@ -36,6 +38,7 @@ impl fmt::Display for Subject {
             Subject::Joint { name, .. } => write!(f, "joint `{name}`"),
             Subject::Link { name, .. } => write!(f, "link `{name}`"),
             Subject::EndEffector => write!(f, "end effector"),
+            Subject::Frame(name) => write!(f, "frame `{name}`"),
         }
     }
 }

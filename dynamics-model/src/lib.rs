@@ -58,7 +58,9 @@ pub mod validate;
 
 pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
-pub use robot::{Base, EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY};
+pub use robot::{
+    Base, EndEffector, Frame, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
+};
 pub mod load;
 pub mod shipped;
 pub mod toml_format;

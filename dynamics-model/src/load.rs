@@ -40,6 +40,11 @@ pub struct LoadOptions {
     /// Puts a free 6-DoF joint between the world and the base ([`crate::Base::floating`]);
     /// a description may also ask for one itself (a URDF root joint of type `floating`).
     pub floating_base: bool,
+    /// URDF: the links whose frames the generated code computes the pose and Jacobians of
+    /// ([`crate::Robot::frames`]), in this order. `None`: on a tree, every leaf link (a link
+    /// nothing hangs from: feet, hands, sensors) in depth-first order; on a serial chain
+    /// none (the end effector has its own functions).
+    pub frames: Option<Vec<String>>,
 }
 
 /// The name standard input has in errors.

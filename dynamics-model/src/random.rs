@@ -168,6 +168,7 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
             parent: spec.dof.checked_sub(1),
             home: tip,
         },
+        frames: Vec::new(),
         gravity,
     }
 }
@@ -238,6 +239,7 @@ pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
             parent: spec.dof.checked_sub(1),
             home: tip,
         },
+        frames: Vec::new(),
         gravity,
     }
 }

@@ -93,17 +93,21 @@ pub struct Link {
     pub inertia: SpatialInertia,
 }
 
-/// The end-effector frame {n+1}.
+/// A frame rigidly attached to a link or to the base: the end-effector frame {n+1}, or a
+/// named frame such as a foot or a hand ([`Robot::frames`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct EndEffector {
-    /// The frame's name (the URDF tip link, or the TOML `end_effector.name`).
+pub struct Frame {
+    /// The frame's name (a URDF link, the TOML `end_effector.name` or `frame.name`).
     pub name: String,
-    /// The link it is attached to (0-based), or `None` for the base; on a serial chain the
-    /// last link.
+    /// The link it is attached to (0-based), or `None` for the base; for the end effector
+    /// of a serial chain the last link.
     pub parent: Option<usize>,
-    /// Its pose in that link's frame (`M_{n,n+1}` on a serial chain).
+    /// Its pose in that link's frame (`M_{n,n+1}` for the end effector of a serial chain).
     pub home: Matrix4<f64>,
 }
+
+/// The end-effector frame {n+1}: a [`Frame`].
+pub type EndEffector = Frame;
 
 /// The base: the body every root link hangs from, whose frame is {0} at the home
 /// configuration.
@@ -146,6 +150,9 @@ pub struct Robot {
     pub links: Vec<Link>,
     /// The end-effector frame {n+1}.
     pub end_effector: EndEffector,
+    /// Named frames whose pose and Jacobians the generated code computes (feet, hands,
+    /// sensors), in this order; may be empty.
+    pub frames: Vec<Frame>,
     /// The gravity vector in {0} (m/s²).
     pub gravity: Vector3<f64>,
 }
@@ -218,6 +225,7 @@ impl Robot {
                 parent: n.checked_sub(1),
                 home: m_list[n],
             },
+            frames: Vec::new(),
             gravity,
         })
     }
@@ -312,9 +320,25 @@ impl Robot {
 
     /// `B_i = [Ad_{M⁻¹}] S_i`: the screw axes in the end-effector frame at home.
     pub fn body_frame_screws(&self) -> Vec<Vector6<f64>> {
-        let m = self.home_poses()[self.dof() + 1];
-        let ad = adjoint(&trans_inv(&m));
+        self.frame_screws(&self.end_effector)
+    }
+
+    /// `M_{0f}`: the home pose of a frame (the end effector or one of [`Robot::frames`]) in
+    /// {0}.
+    pub fn frame_home(&self, frame: &Frame) -> Matrix4<f64> {
+        let homes = self.home_poses();
+        frame.parent.map_or(Matrix4::identity(), |p| homes[p + 1]) * frame.home
+    }
+
+    /// `[Ad_{M_{0f}⁻¹}] S_i`: the screw axes in a frame at home.
+    pub fn frame_screws(&self, frame: &Frame) -> Vec<Vector6<f64>> {
+        let ad = adjoint(&trans_inv(&self.frame_home(frame)));
         self.joints.iter().map(|j| ad * j.screw).collect()
+    }
+
+    /// The joints on the path from the base to a frame, base side first.
+    pub fn frame_path(&self, frame: &Frame) -> Vec<usize> {
+        frame.parent.map_or(Vec::new(), |p| self.path_to(p))
     }
 
     /// The names of the movable joints, in the order of every vector.

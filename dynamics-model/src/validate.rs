@@ -115,21 +115,30 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
         }
         errors.extend(check_spatial_inertia(subject, "inertia", &l.inertia.0));
     }
-    if let Some(e) = check_home(Subject::EndEffector, "home", &robot.end_effector.home) {
-        errors.push(e);
-    }
-    if let Some(p) = robot.end_effector.parent {
-        if p >= robot.links.len() {
-            errors.push(Invalid::new(
-                Subject::EndEffector,
-                "parent",
-                format!(
-                    "is attached to link {}, but the robot has {} links",
-                    p + 1,
-                    robot.links.len()
-                ),
-                "attach the end effector to one of the robot's links",
-            ));
+    let frames = std::iter::once((Subject::EndEffector, &robot.end_effector)).chain(
+        robot
+            .frames
+            .iter()
+            .map(|f| (Subject::Frame(f.name.clone()), f)),
+    );
+    for (subject, frame) in frames {
+        if let Some(e) = check_home(subject.clone(), "home", &frame.home) {
+            errors.push(e);
+        }
+        if let Some(p) = frame.parent {
+            if p >= robot.links.len() {
+                let fix = format!("attach the {subject} to one of the robot's links");
+                errors.push(Invalid::new(
+                    subject,
+                    "parent",
+                    format!(
+                        "is attached to link {}, but the robot has {} links",
+                        p + 1,
+                        robot.links.len()
+                    ),
+                    fix,
+                ));
+            }
         }
     }
     let base = Subject::Link {

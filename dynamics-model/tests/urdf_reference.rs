@@ -16,6 +16,7 @@ fn compare(urdf: &str, json: &str) -> (f64, f64) {
     let reference = reference(json);
     let text = robot_text(urdf);
     let options = LoadOptions {
+        frames: None,
         tip: Some(
             reference["ee_frame"]
                 .as_str()

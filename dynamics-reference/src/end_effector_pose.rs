@@ -1,43 +1,41 @@
-//! Forward kinematics of the end-effector frame (Modern Robotics §4.1, the book's `FKinSpace`),
-//! through the path to the end effector's link.
+//! Forward kinematics of a frame (Modern Robotics §4.1, the book's `FKinSpace`): the
+//! end-effector frame or a named frame, through the path to its link.
 
 use crate::base::{base_pose, joint_values};
 use dynamics_model::lie::exp6;
-use dynamics_model::Robot;
+use dynamics_model::{Frame, Robot};
 use nalgebra::Matrix4;
 
-/// `T_{0,n+1}(q) = T_{0b} e^{[S_{k1}]θ_{k1}} ⋯ e^{[S_{km}]θ_{km}} M`, with `k1..km` the joints on
-/// the path from the base to the end effector's link (all joints 1..n on a serial chain), `M`
-/// the home pose of the end-effector frame {n+1} and `T_{0b}` the base pose
-/// ([`crate::base_pose`]; the identity on a fixed base).
+/// `T_{0,n+1}(q)`: [`frame_pose`] of the end effector.
 ///
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn end_effector_pose(robot: &Robot, q: &[f64]) -> Matrix4<f64> {
-    let t_0b = base_pose(robot, q);
-    let t_b = end_effector_pose_in_base(robot, q);
+    frame_pose(robot, &robot.end_effector, q)
+}
+
+/// `T_{0f}(q) = T_{0b} e^{[S_{k1}]θ_{k1}} ⋯ e^{[S_{km}]θ_{km}} M_{0f}`, with `k1..km` the
+/// joints on the path from the base to the frame's link (all joints 1..n for the end effector
+/// of a serial chain), `M_{0f}` the frame's home pose in {0} and `T_{0b}` the base pose
+/// ([`crate::base_pose`]; the identity on a fixed base).
+///
+/// # Panics
+/// If `q` does not have `robot.nq()` entries.
+pub fn frame_pose(robot: &Robot, frame: &Frame, q: &[f64]) -> Matrix4<f64> {
+    let t_b = frame_pose_in_base(robot, frame, q);
     if robot.base.floating {
-        t_0b * t_b
+        base_pose(robot, q) * t_b
     } else {
         t_b
     }
 }
 
-/// `T_{b,n+1}(θ)`: the end-effector pose in the base frame (= {0} on a fixed base).
-pub(crate) fn end_effector_pose_in_base(robot: &Robot, q: &[f64]) -> Matrix4<f64> {
+/// `T_{bf}(θ)`: a frame's pose in the base frame (= {0} on a fixed base).
+pub(crate) fn frame_pose_in_base(robot: &Robot, frame: &Frame, q: &[f64]) -> Matrix4<f64> {
     let theta = joint_values(robot, q);
-    let home = robot.home_poses();
     let mut t = Matrix4::<f64>::identity();
-    for i in end_effector_path(robot) {
+    for i in robot.frame_path(frame) {
         t *= exp6(&robot.joints[i].screw, theta[i]);
     }
-    t * home[robot.dof() + 1]
-}
-
-/// The joints on the path from the base to the end effector, base side first.
-pub(crate) fn end_effector_path(robot: &Robot) -> Vec<usize> {
-    robot
-        .end_effector
-        .parent
-        .map_or(Vec::new(), |p| robot.path_to(p))
+    t * robot.frame_home(frame)
 }

@@ -1,18 +1,25 @@
-//! The space Jacobian (Modern Robotics §5.1.1, the book's `JacobianSpace`), on a kinematic
-//! tree and a floating base.
+//! The space Jacobian (Modern Robotics §5.1.1, the book's `JacobianSpace`) of a frame (the end
+//! effector or a named frame), on a kinematic tree and a floating base.
 
 use crate::base::{base_pose, joint_offset, joint_values};
-use crate::end_effector_pose::end_effector_path;
 use dynamics_model::lie::{adjoint, exp6};
-use dynamics_model::Robot;
+use dynamics_model::{Frame, Robot};
 use nalgebra::{DMatrix, Matrix4};
 
+/// [`frame_jacobian_space`] of the end effector.
+///
+/// # Panics
+/// If `q` does not have `robot.nq()` entries.
+pub fn jacobian_space(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
+    frame_jacobian_space(robot, &robot.end_effector, q)
+}
+
 /// `J_s(q)`, 6×nv, with columns in {0}, for the joints `k1..km` on the path from the base to
-/// the end effector (all joints on a serial chain):
+/// the frame (all joints for the end effector of a serial chain):
 /// ```text
 /// J_s,k1 = S_k1,    J_s,kl = [Ad_{e^{[S_k1]θ_k1} ⋯ e^{[S_k(l−1)]θ_k(l−1)}}] S_kl
 /// ```
-/// and zero columns for the joints off the path, so that the end-effector twist in {0} is
+/// and zero columns for the joints off the path, so that the frame's twist in {0} is
 /// `V_s = J_s ν`.
 ///
 /// Floating base: the base's body twist `ν_b` moves everything, and `V_s = [Ad_{T_{0b}}] (ν_b +
@@ -21,13 +28,13 @@ use nalgebra::{DMatrix, Matrix4};
 ///
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
-pub fn jacobian_space(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
+pub fn frame_jacobian_space(robot: &Robot, frame: &Frame, q: &[f64]) -> DMatrix<f64> {
     let t_0b = base_pose(robot, q);
     let theta = joint_values(robot, q);
     let off = joint_offset(robot);
     let mut j_s = DMatrix::zeros(6, robot.nv());
     let mut t = Matrix4::<f64>::identity();
-    let path = end_effector_path(robot);
+    let path = robot.frame_path(frame);
     for (l, &i) in path.iter().enumerate() {
         if l > 0 {
             let k = path[l - 1];

@@ -28,9 +28,9 @@ pub const NQ_BASE: usize = 7;
 /// Number of velocity entries of a floating base (its body twist).
 pub const NV_BASE: usize = 6;
 
-/// `Rᵀ g` for the gravity vector `gravity` in {0}, with `R` from the (normalised)
-/// quaternion inputs `q[3..7]`.
-pub fn gravity_in_base(g: &mut ExprGraph, gravity: [f64; 3]) -> V3 {
+/// `R`, the base orientation in {0} (rows), from the (normalised) quaternion inputs
+/// `q[3..7]` (see the module docs).
+pub fn base_rotation(g: &mut ExprGraph) -> [[ExprId; 3]; 3] {
     let [x, y, z, w] = std::array::from_fn(|k| g.input(input(Q, QUAT + k)));
     let sq = |g: &mut ExprGraph, a: ExprId| g.mul(a, a);
     let (xx, yy, zz, ww) = (sq(g, x), sq(g, y), sq(g, z), sq(g, w));
@@ -56,11 +56,17 @@ pub fn gravity_in_base(g: &mut ExprGraph, gravity: [f64; 3]) -> V3 {
         let t = if plus { g.add(a, b) } else { g.sub(a, b) };
         g.mul(k, t)
     };
-    let r = [
+    [
         [diag(g, yy, zz), off(g, xy, zw, false), off(g, xz, yw, true)],
         [off(g, xy, zw, true), diag(g, xx, zz), off(g, yz, xw, false)],
         [off(g, xz, yw, false), off(g, yz, xw, true), diag(g, xx, yy)],
-    ];
+    ]
+}
+
+/// `Rᵀ g` for the gravity vector `gravity` in {0}, with `R` from the (normalised)
+/// quaternion inputs `q[3..7]` ([`base_rotation`]).
+pub fn gravity_in_base(g: &mut ExprGraph, gravity: [f64; 3]) -> V3 {
+    let r = base_rotation(g);
     // (Rᵀ g)_j = Σ_i R_ij g_i; zero components of g fold away.
     std::array::from_fn(|j| {
         let terms: Vec<ExprId> = (0..3)

@@ -106,6 +106,8 @@ pub struct JointFrames {
     pub joints: Vec<JointFrame>,
     /// A floating base's inertia in {0} (the base frame); `None` for a fixed base.
     pub base: Option<BodyInertia>,
+    /// `T_{0,J_i}`: every joint frame's pose in the base frame at the home configuration.
+    pub homes: Vec<Matrix4<f64>>,
     /// Gravity in {0} (m/s²).
     pub gravity: [f64; 3],
 }
@@ -401,6 +403,7 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
     JointFrames {
         joints,
         base,
+        homes: frames,
         gravity: [robot.gravity[0], robot.gravity[1], robot.gravity[2]],
     }
 }

@@ -34,6 +34,7 @@ pub mod aba;
 pub mod base;
 pub mod crba;
 pub mod frames;
+pub mod kinematics;
 pub mod ldlt;
 pub mod rnea;
 pub mod rnea_classical;

@@ -17,7 +17,7 @@ use crate::error::{Invalid, Subject};
 use crate::inertia::SpatialInertia;
 use crate::lie::twist;
 use crate::robot::{
-    Base, EndEffector, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
+    Base, EndEffector, Frame, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
 };
 use nalgebra::{Matrix4, Vector3, Vector6};
 use std::collections::HashMap;
@@ -149,6 +149,24 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
             }),
         },
     };
+    let mut frames = Vec::with_capacity(spec.frames.len());
+    for f in &spec.frames {
+        let subject = Subject::Frame(f.name.clone());
+        let parent = names
+            .parent(&subject, "parent", &f.parent, n)
+            .map_err(|e| errors.push(e));
+        let home = match &f.home {
+            None => Ok(Matrix4::identity()),
+            Some(v) => pose(&subject, "home", v).map_err(|e| errors.push(e)),
+        };
+        if let (Ok(parent), Ok(home)) = (parent, home) {
+            frames.push(Frame {
+                name: f.name.clone(),
+                parent,
+                home,
+            });
+        }
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -159,6 +177,7 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
         joints,
         links,
         end_effector,
+        frames,
         gravity,
     })
 }

@@ -2,7 +2,7 @@
 //! error (an unknown key, a wrong type, a missing key) can name it as well as its line.
 //!
 //! A light scan of the text: table headers (`[[joint]]`, `[joint.link]`,
-//! `[[joint.link.body]]`, `[end_effector]`, `[base]`, `[[base.body]]`) on lines of their own, and each table's
+//! `[[joint.link.body]]`, `[end_effector]`, `[[frame]]`, `[base]`, `[[base.body]]`) on lines of their own, and each table's
 //! `name = "…"`. It only adds context to a message, so a layout it does not recognise
 //! (e.g. inline tables) simply gives none.
 
@@ -54,6 +54,7 @@ pub(crate) fn context(text: &str, offset: usize) -> Option<String> {
             ))
         }
         "[end_effector]" => Some("[end_effector]".into()),
+        "[[frame]]" => Some(named("[[frame]]".into(), s.name)),
         "[base]" => Some(named("[base]".into(), s.name)),
         "[[base.body]]" => {
             let body_index = sections[..=here]

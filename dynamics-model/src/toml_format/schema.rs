@@ -31,6 +31,9 @@ pub(crate) struct RobotFile {
     /// The end-effector frame `[end_effector]`.
     #[serde(default)]
     pub end_effector: Option<EndEffectorSpec>,
+    /// Named frames `[[frame]]` (feet, hands, sensors).
+    #[serde(default, rename = "frame")]
+    pub frames: Vec<FrameSpec>,
 }
 
 /// `revolute` or `prismatic`.
@@ -213,6 +216,17 @@ pub(crate) struct EndEffectorSpec {
     pub name: Option<String>,
     /// The link it is attached to (default: the last joint's link).
     pub parent: Option<String>,
+    /// Its pose in the parent link's frame (default identity).
+    pub home: Option<toml::Value>,
+}
+
+/// `[[frame]]`: a named frame on a link or the base.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FrameSpec {
+    pub name: String,
+    /// The link (or base) it is attached to.
+    pub parent: String,
     /// Its pose in the parent link's frame (default identity).
     pub home: Option<toml::Value>,
 }

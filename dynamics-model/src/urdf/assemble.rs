@@ -23,13 +23,14 @@ use super::tree::Tree;
 use crate::error::{Invalid, Subject};
 use crate::inertia::SpatialInertia;
 use crate::lie::{adjoint, rotation, twist};
-use crate::robot::{Base, EndEffector, Joint, JointKind, Link, Robot, DEFAULT_GRAVITY};
+use crate::robot::{Base, Frame, Joint, JointKind, Link, Robot, DEFAULT_GRAVITY};
 use nalgebra::{Matrix4, Vector3};
 
 /// Builds the robot from the checked parts. `movable` lists the movable joints in the
 /// robot's order ([`Tree::joint_order`] without the fixed and locked ones); `tip` is the
-/// end-effector link, if not the last movable joint's child; `floating` says whether the base
-/// floats (then the inertias of its links are checked as a moving body's).
+/// end-effector link, if not the last movable joint's child; `frames` the links of the named
+/// frames (`None`: the leaf links of a tree, none on a serial chain); `floating` says whether
+/// the base floats (then the inertias of its links are checked as a moving body's).
 pub fn robot(
     urdf: &urdf_rs::Robot,
     tree: &Tree,
@@ -37,6 +38,7 @@ pub fn robot(
     links: &[LinkModel],
     movable: &[usize],
     tip: Option<usize>,
+    frames: Option<&[usize]>,
     floating: bool,
 ) -> Result<Robot, Vec<Invalid>> {
     let n = movable.len();
@@ -114,20 +116,53 @@ pub fn robot(
         return Err(errors);
     }
     let tip_link = tip.unwrap_or(tree.ends[last].1);
-    let Some(tip_body) = body[tip_link] else {
-        return Err(vec![Invalid::new(
-            Subject::EndEffector,
-            "tip",
+    // A frame on link l: on l's body, at l's pose in it.
+    let frame_at = |l: usize, subject: Subject, field: &str| match body[l] {
+        Some(b) => Ok(Frame {
+            name: tree.link_names[l].clone(),
+            parent: b.checked_sub(1),
+            home: pose[l],
+        }),
+        None => Err(Invalid::new(
+            subject,
+            field,
             format!(
                 "link `{}` is the world above the floating root joint, not a link of the robot",
-                tree.link_names[tip_link]
+                tree.link_names[l]
             ),
             format!(
                 "choose a link of the robot, e.g. the floating base `{}`",
                 tree.link_names[tree.root]
             ),
-        )]);
+        )),
     };
+    let end_effector = frame_at(tip_link, Subject::EndEffector, "tip").map_err(|e| vec![e])?;
+    // Default frames: the leaf links of a tree (depth first).
+    let is_tree = parent
+        .iter()
+        .enumerate()
+        .any(|(i, p)| *p != i.checked_sub(1));
+    let leaves: Vec<usize> = tree
+        .depth_first()
+        .into_iter()
+        .filter(|&l| body[l].is_some() && tree.child_joints[l].is_empty())
+        .collect();
+    let frame_links = match frames {
+        Some(f) => f,
+        None if is_tree => &leaves[..],
+        None => &[],
+    };
+    let frames: Vec<Frame> = frame_links
+        .iter()
+        .map(|&l| {
+            let subject = Subject::Link {
+                index: None,
+                name: tree.link_names[l].clone(),
+            };
+            frame_at(l, subject, "frame")
+        })
+        .collect::<Result<_, _>>()
+        .map_err(|e| vec![e])?;
     let mut m0: Vec<Matrix4<f64>> = Vec::with_capacity(n);
     let mut out_joints = Vec::with_capacity(n);
     let mut out_links = Vec::with_capacity(n);
@@ -166,11 +201,8 @@ pub fn robot(
         },
         joints: out_joints,
         links: out_links,
-        end_effector: EndEffector {
-            name: tree.link_names[tip_link].clone(),
-            parent: tip_body.checked_sub(1),
-            home: pose[tip_link],
-        },
+        end_effector,
+        frames,
         gravity: Vector3::from(DEFAULT_GRAVITY),
     })
 }

@@ -121,24 +121,35 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         .map(convert::link)
         .filter_map(|r| r.map_err(|e| errors.extend(e)).ok())
         .collect();
-    let tip = match &options.tip {
-        None => None,
-        Some(name) => match tree.link_names.iter().position(|l| l == name) {
-            Some(l) => Some(l),
-            None => {
-                errors.push(Invalid::new(
-                    Subject::Link {
-                        index: None,
-                        name: name.clone(),
-                    },
-                    "tip",
-                    "the file has no link of this name to use as the end effector",
-                    format!("give one of the links: {}", tree.link_names.join(", ")),
-                ));
-                None
-            }
-        },
+    let mut link_index = |name: &str, field: &str, what: &str| match tree
+        .link_names
+        .iter()
+        .position(|l| l == name)
+    {
+        Some(l) => Some(l),
+        None => {
+            errors.push(Invalid::new(
+                Subject::Link {
+                    index: None,
+                    name: name.to_string(),
+                },
+                field,
+                format!("the file has no link of this name to use as {what}"),
+                format!("give one of the links: {}", tree.link_names.join(", ")),
+            ));
+            None
+        }
     };
+    let tip = options
+        .tip
+        .as_deref()
+        .and_then(|name| link_index(name, "tip", "the end effector"));
+    let frames: Option<Vec<usize>> = options.frames.as_ref().map(|names| {
+        names
+            .iter()
+            .filter_map(|name| link_index(name, "frame", "a frame"))
+            .collect()
+    });
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -152,5 +163,14 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         return Err(errors);
     }
     let floating = options.floating_base || floating_root.is_some();
-    assemble::robot(urdf, &tree, &joints, &links, &movable, tip, floating)
+    assemble::robot(
+        urdf,
+        &tree,
+        &joints,
+        &links,
+        &movable,
+        tip,
+        frames.as_deref(),
+        floating,
+    )
 }

@@ -92,6 +92,7 @@ pub fn robot_from_pinocchio(file: &Value) -> Robot {
             parent: n.checked_sub(1),
             home: Matrix4::identity(),
         },
+        frames: Vec::new(),
         gravity: vec3(&file["gravity"]),
     };
     robot.validate().expect("the reference robot is valid");

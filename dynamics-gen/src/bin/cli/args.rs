@@ -59,6 +59,11 @@ pub struct ModelArgs {
     /// for a URDF whose root joint is `floating`.
     #[arg(long)]
     pub floating_base: bool,
+    /// URDF: links whose frames get a pose and Jacobians in the generated code (feet,
+    /// hands); repeatable and comma-separated. Default: on a tree every leaf link, on a chain
+    /// none (the end effector has its own functions).
+    #[arg(long, value_name = "LINK[,LINK...]", value_delimiter = ',')]
+    pub frame: Vec<String>,
 }
 
 /// Arguments of `eval`.
@@ -106,6 +111,7 @@ impl ModelArgs {
     /// The loader options.
     pub fn load_options(&self) -> LoadOptions {
         LoadOptions {
+            frames: (!self.frame.is_empty()).then(|| self.frame.clone()),
             tip: self.tip.clone(),
             lock: self.lock.clone(),
             gravity: self.gravity.map(Into::into),

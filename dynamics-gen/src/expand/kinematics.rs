@@ -1,0 +1,298 @@
+//! Kinematics of frames: the pose of a frame rigidly attached to a link (the end effector, a
+//! foot, a hand) and its space and body Jacobians (Modern Robotics §4.1, §5.1), on a tree and
+//! a floating base.
+//!
+//! Poses are composed from the base outwards in the joint frames of [`super::frames`]: with
+//! `C_i = (R_i, p_i)` the constant part of `T_{J_i,J_λ(i)}(θ) = Rot_z(−θ_i) C_i` (revolute) or
+//! `Trans_z(−θ_i) C_i` (prismatic),
+//!
+//! ```text
+//! T_{b,J_i} = T_{b,J_λ(i)} · C_i⁻¹ · Rot_z(θ_i)        (or · Trans_z(θ_i)),   T_{b,J_0} = 1
+//! T_{b,f}   = T_{b,J_k} · K_f,    K_f = T_{J_k,f}  (constant: the frame on link k)
+//! T_{0,f}   = T_{0b} · T_{b,f}
+//! ```
+//!
+//! with `T_{0b}` the base pose (`q[0..3]` and the normalised quaternion `q[3..7]`; the identity
+//! on a fixed base). A joint's axis is the z axis of its joint frame, so with `z_j` and `p_j`
+//! its direction and origin in the base frame, the Jacobians' columns for the joints on the
+//! path to the frame are
+//!
+//! ```text
+//! body  (in {f}):  J_b,j = (R_fᵀ z_j, R_fᵀ((p_j − p_f) × z_j))   revolute;   (0, R_fᵀ z_j)  prismatic
+//! space (in {0}):  J_s,j = (z⁰_j, p⁰_j × z⁰_j)                    revolute;   (0, z⁰_j)     prismatic
+//! ```
+//!
+//! (`R_f`, `p_f` the frame's pose in the base frame; `z⁰ = R_b z`, `p⁰ = p_b + R_b p`), zero
+//! for the joints off the path. A floating base adds six columns for its body twist
+//! `ν_b = (ω_b, v_b)`: `[Ad_{T_{bf}⁻¹}]` in the body Jacobian and `[Ad_{T_{0b}}]` in the space
+//! Jacobian, so that `V_b = J_b ν` and `V_s = J_s ν` for the whole velocity `ν`.
+
+use super::base::{base_rotation, NQ_BASE, NV_BASE};
+use super::frames::{joint_frames, JointFrames};
+use super::spatial::{VectorOps, V3};
+use super::{input, joint_motions, Q};
+use crate::expr::{ExprGraph, ExprId};
+use dynamics_model::lie::{rotation, trans_inv, translation};
+use dynamics_model::{Frame, JointKind, Robot};
+use nalgebra::Matrix4;
+
+/// A symbolic rotation matrix, by rows.
+pub type M3 = [[ExprId; 3]; 3];
+
+/// The pose and Jacobians of one frame.
+#[derive(Clone, Debug)]
+pub struct FrameKinematics {
+    /// `T_{0f}(q)`: the rotation by rows (9 entries), then the translation (3).
+    pub pose: Vec<ExprId>,
+    /// `J_s(q)`, 6×nv row-major (rows ω then v, in {0}).
+    pub jacobian_space: Vec<ExprId>,
+    /// `J_b(q)`, 6×nv row-major (rows ω then v, in the frame).
+    pub jacobian_body: Vec<ExprId>,
+}
+
+/// The kinematics of the end effector and of the robot's named frames, on their own graph.
+#[derive(Clone, Debug)]
+pub struct Kinematics {
+    /// The expression graph (its inputs are the `q` entries, group [`Q`]).
+    pub graph: ExprGraph,
+    /// The end-effector frame {n+1}.
+    pub end_effector: FrameKinematics,
+    /// [`Robot::frames`], in order.
+    pub frames: Vec<FrameKinematics>,
+}
+
+/// A pose `(R, p)`.
+#[derive(Clone, Copy)]
+struct Pose {
+    r: M3,
+    p: V3,
+}
+
+fn identity(g: &mut ExprGraph) -> Pose {
+    let (o, l) = (g.zero(), g.one());
+    Pose {
+        r: [[l, o, o], [o, l, o], [o, o, l]],
+        p: [o, o, o],
+    }
+}
+
+fn column(r: &M3, j: usize) -> V3 {
+    [r[0][j], r[1][j], r[2][j]]
+}
+
+/// `A c` for a symbolic `A` and a constant `c`.
+fn mul_const(g: &mut ExprGraph, a: &M3, c: &[[f64; 3]; 3]) -> M3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let terms: Vec<ExprId> = (0..3).map(|k| g.cmul(c[k][j], a[i][k])).collect();
+            g.sum(&terms)
+        })
+    })
+}
+
+/// `A v` for a constant `v`.
+fn apply_const(g: &mut ExprGraph, a: &M3, v: [f64; 3]) -> V3 {
+    std::array::from_fn(|i| {
+        let terms: Vec<ExprId> = (0..3).map(|k| g.cmul(v[k], a[i][k])).collect();
+        g.sum(&terms)
+    })
+}
+
+/// `A v`.
+fn apply(g: &mut ExprGraph, a: &M3, v: V3) -> V3 {
+    std::array::from_fn(|i| {
+        let terms: Vec<ExprId> = (0..3).map(|k| g.mul(a[i][k], v[k])).collect();
+        g.sum(&terms)
+    })
+}
+
+/// `Aᵀ v`.
+fn apply_t(g: &mut ExprGraph, a: &M3, v: V3) -> V3 {
+    std::array::from_fn(|i| {
+        let terms: Vec<ExprId> = (0..3).map(|k| g.mul(a[k][i], v[k])).collect();
+        g.sum(&terms)
+    })
+}
+
+/// `A B`.
+fn mul(g: &mut ExprGraph, a: &M3, b: &M3) -> M3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let terms: Vec<ExprId> = (0..3).map(|k| g.mul(a[i][k], b[k][j])).collect();
+            g.sum(&terms)
+        })
+    })
+}
+
+fn rows_of(m: &Matrix4<f64>) -> ([[f64; 3]; 3], [f64; 3]) {
+    let r = rotation(m);
+    let p = translation(m);
+    (
+        std::array::from_fn(|i| std::array::from_fn(|j| r[(i, j)])),
+        [p[0], p[1], p[2]],
+    )
+}
+
+/// `T_{b,J_i}(θ)` for every joint, from the base outwards (see the module docs).
+fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId]) -> Vec<Pose> {
+    let motions = joint_motions(g, frames, q);
+    let base = identity(g);
+    let mut poses: Vec<Pose> = Vec::with_capacity(motions.len());
+    for m in &motions {
+        let f = m.frame;
+        let parent = f.parent.map_or(base, |p| poses[p]);
+        // C⁻¹ = (Rᵀ, −Rᵀ p).
+        let rt: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| f.r[j][i]));
+        let minus_rt_p: [f64; 3] =
+            std::array::from_fn(|i| -(0..3).map(|k| rt[i][k] * f.p[k]).sum::<f64>());
+        let a = mul_const(g, &parent.r, &rt);
+        let shift = apply_const(g, &parent.r, minus_rt_p);
+        let mut p = g.add3(parent.p, shift);
+        let r = match f.kind {
+            JointKind::Revolute => {
+                // A · Rot_z(θ): columns (c a₀ + s a₁, −s a₀ + c a₁, a₂).
+                let (a0, a1) = (column(&a, 0), column(&a, 1));
+                let ca0 = g.scale3(m.cos, a0);
+                let sa1 = g.scale3(m.sin, a1);
+                let col0 = g.add3(ca0, sa1);
+                let ca1 = g.scale3(m.cos, a1);
+                let sa0 = g.scale3(m.sin, a0);
+                let col1 = g.sub3(ca1, sa0);
+                std::array::from_fn(|i| [col0[i], col1[i], a[i][2]])
+            }
+            JointKind::Prismatic => {
+                let d = g.scale3(m.q, column(&a, 2));
+                p = g.add3(p, d);
+                a
+            }
+        };
+        poses.push(Pose { r, p });
+    }
+    poses
+}
+
+/// Expands the pose and Jacobians of the end effector and of every named frame of `robot`.
+pub fn expand_kinematics(robot: &Robot) -> Kinematics {
+    let frames = joint_frames(robot);
+    let n = robot.dof();
+    let floating = robot.base.floating;
+    let (oq, ov) = if floating { (NQ_BASE, NV_BASE) } else { (0, 0) };
+    let nv = n + ov;
+    let mut g = ExprGraph::new();
+    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, oq + i))).collect();
+    let poses = joint_poses(&mut g, &frames, &q);
+    // The base pose T_{0b}: from q on a floating base.
+    let base = floating.then(|| {
+        let r = base_rotation(&mut g);
+        let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
+        Pose { r, p }
+    });
+    let mut one = |frame: &Frame| frame_kinematics(&mut g, robot, &frames, &poses, base, frame, nv);
+    let end_effector = one(&robot.end_effector);
+    let named = robot.frames.iter().map(&mut one).collect();
+    Kinematics {
+        graph: g,
+        end_effector,
+        frames: named,
+    }
+}
+
+fn frame_kinematics(
+    g: &mut ExprGraph,
+    robot: &Robot,
+    frames: &JointFrames,
+    poses: &[Pose],
+    base: Option<Pose>,
+    frame: &Frame,
+    nv: usize,
+) -> FrameKinematics {
+    let ov = nv - robot.dof();
+    // K_f = T_{J_k,f}: the frame in its link's joint frame (in {0} for the base).
+    let home = robot.frame_home(frame);
+    let (link_pose, k) = match frame.parent {
+        Some(k) => (poses[k], trans_inv(&frames.homes[k]) * home),
+        None => (identity(g), home),
+    };
+    let (kr, kp) = rows_of(&k);
+    let r_f = mul_const(g, &link_pose.r, &kr);
+    let shift = apply_const(g, &link_pose.r, kp);
+    let p_f = g.add3(link_pose.p, shift);
+    let zero = g.zero();
+    let mut j_b = vec![zero; 6 * nv];
+    let mut j_s = vec![zero; 6 * nv];
+    let set = |j: &mut Vec<ExprId>, col: usize, w: V3, v: V3| {
+        for k in 0..3 {
+            j[k * nv + col] = w[k];
+            j[(3 + k) * nv + col] = v[k];
+        }
+    };
+    // Body Jacobian: joint columns, then a floating base's (z = e_c at p = 0).
+    for i in robot.frame_path(frame) {
+        let z = column(&poses[i].r, 2);
+        let lin = apply_t(g, &r_f, z);
+        let (w, v) = match robot.joints[i].kind {
+            JointKind::Revolute => {
+                let d = g.sub3(poses[i].p, p_f);
+                let dz = g.cross(d, z);
+                (lin, apply_t(g, &r_f, dz))
+            }
+            JointKind::Prismatic => ([zero; 3], lin),
+        };
+        set(&mut j_b, ov + i, w, v);
+    }
+    let world = match base {
+        None => Pose { r: r_f, p: p_f },
+        Some(b) => {
+            let r = mul(g, &b.r, &r_f);
+            let rp = apply(g, &b.r, p_f);
+            Pose {
+                r,
+                p: g.add3(b.p, rp),
+            }
+        }
+    };
+    if ov > 0 {
+        let minus_p = g.sub3([zero; 3], p_f);
+        for c in 0..3 {
+            // Row c of R_f is R_fᵀ e_c.
+            let w = r_f[c];
+            let mut e = [zero; 3];
+            e[c] = g.one();
+            let pe = g.cross(minus_p, e);
+            let v = apply_t(g, &r_f, pe);
+            set(&mut j_b, c, w, v);
+            set(&mut j_b, 3 + c, [zero; 3], w);
+        }
+    }
+    // Space Jacobian: joint axes in {0}, then a floating base's [Ad_{T_0b}].
+    for i in robot.frame_path(frame) {
+        let (z, p) = match base {
+            None => (column(&poses[i].r, 2), poses[i].p),
+            Some(b) => {
+                let z = apply(g, &b.r, column(&poses[i].r, 2));
+                let rp = apply(g, &b.r, poses[i].p);
+                (z, g.add3(b.p, rp))
+            }
+        };
+        let (w, v) = match robot.joints[i].kind {
+            JointKind::Revolute => (z, g.cross(p, z)),
+            JointKind::Prismatic => ([zero; 3], z),
+        };
+        set(&mut j_s, ov + i, w, v);
+    }
+    if let Some(b) = base {
+        for c in 0..3 {
+            let w = column(&b.r, c);
+            let v = g.cross(b.p, w);
+            set(&mut j_s, c, w, v);
+            set(&mut j_s, 3 + c, [zero; 3], w);
+        }
+    }
+    let mut pose: Vec<ExprId> = world.r.iter().flatten().copied().collect();
+    pose.extend(world.p);
+    FrameKinematics {
+        pose,
+        jacobian_space: j_s,
+        jacobian_body: j_b,
+    }
+}
