@@ -8,6 +8,7 @@
 
 use crate::emit::Generated;
 use crate::error::Error;
+use crate::expand::kinematics::FrameKinematics;
 use crate::expr::{ExprId, OpCounts};
 use crate::options::Options;
 use dynamics_model::Robot;
@@ -18,7 +19,8 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FunctionStats {
     /// The function's name (`mass_matrix`, `coriolis`, `gravity`, `inverse_dynamics`,
-    /// `forward_dynamics`).
+    /// `forward_dynamics`, `end_effector_pose`, `jacobian_space`, `jacobian_body`, and with
+    /// named frames `frame_poses`, `frame_jacobians_space`, `frame_jacobians_body`).
     pub name: &'static str,
     /// Its operation counts.
     pub ops: OpCounts,
@@ -105,7 +107,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ("inverse_dynamics", &d.inverse_dynamics),
         ("forward_dynamics", &d.forward_dynamics),
     ];
-    let functions = outputs
+    let mut functions: Vec<FunctionStats> = outputs
         .iter()
         .map(|&(name, roots)| FunctionStats {
             name,
@@ -113,6 +115,27 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             lines: function_lines(code, name),
         })
         .collect();
+    let k = &generated.kinematics;
+    let all = |f: fn(&FrameKinematics) -> &Vec<ExprId>| -> Vec<ExprId> {
+        k.frames.iter().flat_map(|x| f(x).iter().copied()).collect()
+    };
+    let mut kinematics: Vec<(&'static str, Vec<ExprId>)> = vec![
+        ("end_effector_pose", k.end_effector.pose.clone()),
+        ("jacobian_space", k.end_effector.jacobian_space.clone()),
+        ("jacobian_body", k.end_effector.jacobian_body.clone()),
+    ];
+    if !k.frames.is_empty() {
+        kinematics.extend([
+            ("frame_poses", all(|x| &x.pose)),
+            ("frame_jacobians_space", all(|x| &x.jacobian_space)),
+            ("frame_jacobians_body", all(|x| &x.jacobian_body)),
+        ]);
+    }
+    functions.extend(kinematics.iter().map(|(name, roots)| FunctionStats {
+        name,
+        ops: k.graph.op_counts(roots),
+        lines: function_lines(code, name),
+    }));
     let nv = d.nv;
     // Structural zeros: off-diagonal zeros that the tree explains (dofs on different
     // branches), not zeros that happen to fold.
@@ -172,14 +195,14 @@ impl fmt::Display for Stats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "{:<18} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
+            "{:<22} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
             "function", "mul", "add/sub", "div", "sqrt", "sin/cos", "neg", "lines"
         )?;
         for s in &self.functions {
             let o = s.ops;
             writeln!(
                 f,
-                "{:<18} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
+                "{:<22} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
                 s.name, o.mul, o.add_sub, o.div, o.sqrt, o.sin_cos, o.neg, s.lines
             )?;
         }
@@ -221,7 +244,7 @@ mod tests {
     fn pendulum_mass_matrix_depends_on_q2_only() {
         let robot = dynamics_model::load("pendulum", &Default::default()).unwrap();
         let s = robot_stats(&robot, &Options::default()).unwrap();
-        assert_eq!(s.functions.len(), 5);
+        assert_eq!(s.functions.len(), 8);
         assert_eq!(s.dof, 2);
         // M(q) of a serial chain never depends on q_1: only q_2 needs a sin/cos.
         assert_eq!(s.functions[0].name, "mass_matrix");
@@ -229,6 +252,6 @@ mod tests {
         // Forward dynamics divides by the LDLᵀ pivots.
         assert!(s.functions[4].ops.div >= 1);
         assert!(s.functions.iter().all(|f| f.lines > 0));
-        assert_eq!(s.to_string().lines().count(), 6);
+        assert_eq!(s.to_string().lines().count(), 9);
     }
 }

@@ -25,6 +25,20 @@ pub struct Arg {
     pub len: usize,
 }
 
+/// What a generated function returns, from its outputs in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// One `rows × cols` matrix (a vector for one column), outputs row-major.
+    Matrix,
+    /// One pose: a rotation by rows (9 outputs), then a translation (3), returned as
+    /// `Isometry3` through the `isometry` helper of the impl ([`isometry_helper`]).
+    Pose,
+    /// An array of this many matrices, each `rows × cols` row-major, one after the other.
+    Matrices(usize),
+    /// An array of this many poses.
+    Poses(usize),
+}
+
 /// Everything the body writer needs.
 pub struct FunctionBody<'a> {
     /// The graph.
@@ -37,6 +51,8 @@ pub struct FunctionBody<'a> {
     pub rows: usize,
     /// Output columns (1 for a vector).
     pub cols: usize,
+    /// How the outputs are returned.
+    pub output: Output,
     /// The scalar type.
     pub scalar: Scalar,
     /// `no_std`: trigonometry through `libm`.
@@ -163,7 +179,27 @@ impl FunctionBody<'_> {
             }
         }
 
-        // Outputs, column-major.
+        // Outputs.
+        let value = match self.output {
+            Output::Matrix => self.matrix(&bind, self.outputs),
+            Output::Pose => self.pose(&bind, self.outputs),
+            Output::Matrices(count) => {
+                let size = self.rows * self.cols;
+                let items = (0..count).map(|k| self.matrix(&bind, &self.outputs[k * size..]));
+                quote!([#(#items),*])
+            }
+            Output::Poses(count) => {
+                let items = (0..count).map(|k| self.pose(&bind, &self.outputs[k * 12..]));
+                quote!([#(#items),*])
+            }
+        };
+        stmts.extend(value);
+        stmts
+    }
+
+    /// A `rows × cols` matrix from the first outputs of `outputs` (row-major), packed column
+    /// by column.
+    fn matrix(&self, bind: &[Binding], outputs: &[ExprId]) -> TokenStream {
         let scalar = Ident::new(self.scalar.as_str(), Span::call_site());
         let na = self.nalgebra;
         let (rows, cols) = (self.rows, self.cols);
@@ -174,7 +210,7 @@ impl FunctionBody<'_> {
         let columns: Vec<TokenStream> = (0..cols)
             .map(|c| {
                 let entries: Vec<TokenStream> = (0..rows)
-                    .map(|r| self.expr(&bind, self.outputs[r * cols + c]))
+                    .map(|r| self.expr(bind, outputs[r * cols + c]))
                     .collect();
                 quote!([#(#entries),*])
             })
@@ -184,10 +220,17 @@ impl FunctionBody<'_> {
         } else {
             quote!(#na::SMatrix::<#scalar, #rows_lit, #cols_lit>)
         };
-        stmts.extend(quote! {
-            #ty::from_array_storage(#na::ArrayStorage([#(#columns),*]))
-        });
-        stmts
+        quote!(#ty::from_array_storage(#na::ArrayStorage([#(#columns),*])))
+    }
+
+    /// `Self::isometry(R, p)` from the first 12 outputs of `outputs`.
+    fn pose(&self, bind: &[Binding], outputs: &[ExprId]) -> TokenStream {
+        let e: Vec<TokenStream> = outputs[..12]
+            .iter()
+            .map(|&id| self.expr(bind, id))
+            .collect();
+        let (r0, r1, r2, p) = (&e[0..3], &e[3..6], &e[6..9], &e[9..12]);
+        quote!(Self::isometry([[#(#r0),*], [#(#r1),*], [#(#r2),*]], [#(#p),*]))
     }
 
     fn sin_cos_call(&self, x: &TokenStream) -> TokenStream {
@@ -299,6 +342,50 @@ impl FunctionBody<'_> {
                 let f = Ident::new(f, Span::call_site());
                 quote!((#a).#f())
             }
+        }
+    }
+}
+
+/// The private `isometry(r, p)` helper of a generated impl: a rotation matrix (by rows) and a
+/// translation as `Isometry3`, the unit quaternion by Shepperd's method (from the largest of
+/// `1 + tr R`, `1 + 2R₀₀ − tr R`, …, so the square root's argument is at least 1 and no
+/// division is ill-conditioned). Branches, no panic; `sqrt` through `libm` for `no_std`.
+pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    let na = nalgebra;
+    let sqrt = |x: TokenStream| match (no_std, scalar) {
+        (false, _) => quote!((#x).sqrt()),
+        (true, Scalar::F64) => quote!(::libm::sqrt(#x)),
+        (true, Scalar::F32) => quote!(::libm::sqrtf(#x)),
+    };
+    let s0 = sqrt(quote!(trace + 1.0));
+    let s1 = sqrt(quote!(1.0 + r00 - r11 - r22));
+    let s2 = sqrt(quote!(1.0 + r11 - r00 - r22));
+    let s3 = sqrt(quote!(1.0 + r22 - r00 - r11));
+    quote! {
+        /// A rotation matrix (rows) and a translation as an isometry; the unit quaternion by
+        /// Shepperd's method.
+        #[inline]
+        fn isometry(r: [[#t; 3]; 3], p: [#t; 3]) -> #na::Isometry3<#t> {
+            let [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]] = r;
+            let trace = r00 + r11 + r22;
+            let (w, x, y, z) = if trace > 0.0 {
+                let s = #s0 * 2.0;
+                (0.25 * s, (r21 - r12) / s, (r02 - r20) / s, (r10 - r01) / s)
+            } else if r00 > r11 && r00 > r22 {
+                let s = #s1 * 2.0;
+                ((r21 - r12) / s, 0.25 * s, (r01 + r10) / s, (r02 + r20) / s)
+            } else if r11 > r22 {
+                let s = #s2 * 2.0;
+                ((r02 - r20) / s, (r01 + r10) / s, 0.25 * s, (r12 + r21) / s)
+            } else {
+                let s = #s3 * 2.0;
+                ((r10 - r01) / s, (r02 + r20) / s, (r12 + r21) / s, 0.25 * s)
+            };
+            #na::Isometry3::from_parts(
+                #na::Translation3::new(p[0], p[1], p[2]),
+                #na::UnitQuaternion::new_unchecked(#na::Quaternion::new(w, x, y, z)),
+            )
         }
     }
 }

@@ -11,10 +11,11 @@ pub mod provenance;
 pub mod text;
 
 use crate::error::Error;
+use crate::expand::kinematics::{expand_kinematics, Kinematics};
 use crate::expand::{self, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use crate::options::{upper_camel, Options, Scalar};
 use dynamics_model::Robot;
-use function::{Arg, FunctionBody};
+use function::{Arg, FunctionBody, Output};
 use proc_macro2::{Ident, Span, TokenStream};
 pub use provenance::Provenance;
 use quote::quote;
@@ -33,6 +34,8 @@ pub struct Generated {
     pub struct_item: TokenStream,
     /// The expansion (for statistics).
     pub dynamics: Dynamics,
+    /// The kinematics of the end effector and the named frames (for statistics).
+    pub kinematics: Kinematics,
     /// The robot as generated: validated, with the gravity override applied.
     pub robot: Robot,
 }
@@ -81,6 +84,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             outputs,
             rows: nv_usize,
             cols,
+            output: Output::Matrix,
             scalar: options.scalar,
             no_std: options.no_std,
             nalgebra: &nalgebra,
@@ -115,7 +119,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &[q.clone(), qd.clone(), qdd.clone()],
         1,
     );
-    let forward = body(&dynamics.forward_dynamics, &[q, qd, tau], 1);
+    let forward = body(&dynamics.forward_dynamics, &[q.clone(), qd, tau], 1);
+    let kinematics = expand_kinematics(&robot);
+    let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &q);
     let names: Vec<&str> = robot.joint_names();
     let units = unit_doc(&robot);
     let gravity_doc = format!(
@@ -196,6 +202,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             pub fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
                 #forward
             }
+
+            #kinematics_fns
         }
     };
     let impl_block = match &runtime {
@@ -218,8 +226,175 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         impl_block,
         struct_item,
         dynamics,
+        kinematics,
         robot,
     })
+}
+
+/// `end_effector_pose`, `jacobian_space`, `jacobian_body`, and for named frames
+/// `FRAME_NAMES`, `frame_poses`, `frame_jacobians_space`, `frame_jacobians_body`; the
+/// private `isometry` helper they share.
+fn kinematics_functions(
+    k: &Kinematics,
+    robot: &Robot,
+    options: &Options,
+    nalgebra: &TokenStream,
+    q: &Arg,
+) -> TokenStream {
+    let nv_usize = robot.nv();
+    let nv = proc_macro2::Literal::usize_unsuffixed(nv_usize);
+    let nq = proc_macro2::Literal::usize_unsuffixed(robot.nq());
+    let scalar = Ident::new(options.scalar.as_str(), Span::call_site());
+    let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
+    let iso_ty = quote!(#nalgebra::Isometry3<#scalar>);
+    let jac_ty = quote!(#nalgebra::SMatrix<#scalar, 6, #nv>);
+    let body = |outputs: &[crate::expr::ExprId], rows: usize, cols: usize, output: Output| {
+        FunctionBody {
+            graph: &k.graph,
+            args: std::slice::from_ref(q),
+            outputs,
+            rows,
+            cols,
+            output,
+            scalar: options.scalar,
+            no_std: options.no_std,
+            nalgebra,
+        }
+        .tokens()
+    };
+    let ee = &k.end_effector;
+    let pose = body(&ee.pose, 0, 0, Output::Pose);
+    let j_s = body(&ee.jacobian_space, 6, nv_usize, Output::Matrix);
+    let j_b = body(&ee.jacobian_body, 6, nv_usize, Output::Matrix);
+    let helper = function::isometry_helper(options.scalar, options.no_std, nalgebra);
+    let ee_doc = format!(
+        " The end-effector frame is {}{}.",
+        inert(&robot.end_effector.name),
+        match robot.end_effector.parent {
+            Some(p) => format!(" on link {}", inert(&robot.links[p].name)),
+            None => format!(" on the base {}", inert(&robot.base.name)),
+        }
+    );
+    let base_doc = if robot.base.floating {
+        quote! {
+            #[doc = ""]
+            #[doc = " With the floating base, `q` includes the base pose and the first six columns map the base's body twist `(ω_b, v_b)` (`qd`'s first six entries)."]
+        }
+    } else {
+        quote!()
+    };
+    let mut out = quote! {
+        #helper
+
+        /// Forward kinematics `T_{0,n+1}(q)` (Modern Robotics §4.1, `FKinSpace`): the pose of
+        /// the end-effector frame in {0} (m).
+        #[doc = ""]
+        #[doc = #ee_doc]
+        #[inline]
+        #[must_use]
+        pub fn end_effector_pose(&self, q: &#q_ty) -> #iso_ty {
+            #pose
+        }
+
+        /// The space Jacobian `J_s(q)` of the end-effector frame (Modern Robotics §5.1.1): rows
+        /// `(ω, v)` in {0}, the twist `V_s = J_s q̇`; zero columns for joints not on the path
+        /// to the end effector.
+        #[doc = ""]
+        #[doc = #ee_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn jacobian_space(&self, q: &#q_ty) -> #jac_ty {
+            #j_s
+        }
+
+        /// The body Jacobian `J_b(q) = [Ad_{T⁻¹}] J_s(q)` of the end-effector frame (Modern
+        /// Robotics §5.1.3): rows `(ω, v)` in the end-effector frame, the twist `V_b = J_b q̇`.
+        #[doc = ""]
+        #[doc = #ee_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn jacobian_body(&self, q: &#q_ty) -> #jac_ty {
+            #j_b
+        }
+    };
+    let nf_usize = robot.frames.len();
+    if nf_usize == 0 {
+        return out;
+    }
+    let nf = proc_macro2::Literal::usize_unsuffixed(nf_usize);
+    let names: Vec<&str> = robot.frames.iter().map(|f| f.name.as_str()).collect();
+    let list: Vec<String> = robot
+        .frames
+        .iter()
+        .map(|f| {
+            let on = match f.parent {
+                Some(p) => inert(&robot.links[p].name),
+                None => format!("the base {}", inert(&robot.base.name)),
+            };
+            format!("{} (on {on})", inert(&f.name))
+        })
+        .collect();
+    let frames_doc = format!(" Frames, in order: {}.", list.join(", "));
+    let cat = |f: fn(&crate::expand::kinematics::FrameKinematics) -> &Vec<crate::expr::ExprId>| {
+        k.frames
+            .iter()
+            .flat_map(|x| f(x).iter().copied())
+            .collect::<Vec<_>>()
+    };
+    let poses = body(&cat(|x| &x.pose), 0, 0, Output::Poses(nf_usize));
+    let js = body(
+        &cat(|x| &x.jacobian_space),
+        6,
+        nv_usize,
+        Output::Matrices(nf_usize),
+    );
+    let jb = body(
+        &cat(|x| &x.jacobian_body),
+        6,
+        nv_usize,
+        Output::Matrices(nf_usize),
+    );
+    out.extend(quote! {
+        /// The named frames (feet, hands, sensors), in the order of the `frame_*` functions'
+        /// arrays.
+        pub const FRAME_NAMES: [&'static str; #nf] = [#(#names),*];
+
+        /// The pose in {0} of every named frame (`FRAME_NAMES` order), computed together
+        /// (shared subexpressions).
+        #[doc = ""]
+        #[doc = #frames_doc]
+        #[inline]
+        #[must_use]
+        pub fn frame_poses(&self, q: &#q_ty) -> [#iso_ty; #nf] {
+            #poses
+        }
+
+        /// The space Jacobian of every named frame (`FRAME_NAMES` order): rows `(ω, v)` in
+        /// {0}, the frame's twist `V_s = J_s q̇`; zero columns for joints not on its path.
+        #[doc = ""]
+        #[doc = #frames_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn frame_jacobians_space(&self, q: &#q_ty) -> [#jac_ty; #nf] {
+            #js
+        }
+
+        /// The body Jacobian of every named frame (`FRAME_NAMES` order): rows `(ω, v)` in
+        /// the frame itself, its twist `V_b = J_b q̇`. The frame's linear velocity in {0} is
+        /// `R v` with `R` the rotation of its pose.
+        #[doc = ""]
+        #[doc = #frames_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn frame_jacobians_body(&self, q: &#q_ty) -> [#jac_ty; #nf] {
+            #jb
+        }
+    });
+    out
 }
 
 /// The whole generated file: `@generated` header (how it was made: generator version,

@@ -18,12 +18,17 @@
 //! path to the frame are
 //!
 //! ```text
-//! body  (in {f}):  J_b,j = (R_fᵀ z_j, R_fᵀ((p_j − p_f) × z_j))   revolute;   (0, R_fᵀ z_j)  prismatic
-//! space (in {0}):  J_s,j = (z⁰_j, p⁰_j × z⁰_j)                    revolute;   (0, z⁰_j)     prismatic
+//! space (in {0}):  J_s,j = (z⁰_j, p⁰_j × z⁰_j)   revolute;   (0, z⁰_j)   prismatic
+//! body  (in {f}):  J_b,j = (z_j, p_j × z_j)      revolute;   (0, z_j)    prismatic
 //! ```
 //!
-//! (`R_f`, `p_f` the frame's pose in the base frame; `z⁰ = R_b z`, `p⁰ = p_b + R_b p`), zero
-//! for the joints off the path. A floating base adds six columns for its body twist
+//! with `z⁰`, `p⁰` in {0} (`z⁰ = R_b z`, `p⁰ = p_b + R_b p` from the base-frame pose), and for
+//! the body Jacobian `z`, `p` the axis and origin in the frame {f} itself, i.e. the last
+//! column and the translation of `X_j = T_{f,J_j}`, computed from the frame inwards:
+//! `X = K_f⁻¹`, then `X ← X · Rot_z(−θ_j) · C_j` past each joint of the path. So `J_b,j`
+//! depends only on the joints between joint j and the frame (as the book's `JacobianBody`),
+//! never on products `R_fᵀ R_j` that cancel only numerically. Columns of joints off the path
+//! are zero. A floating base adds six columns for its body twist
 //! `ν_b = (ω_b, v_b)`: `[Ad_{T_{bf}⁻¹}]` in the body Jacobian and `[Ad_{T_{0b}}]` in the space
 //! Jacobian, so that `V_b = J_b ν` and `V_s = J_s ν` for the whole velocity `ν`.
 
@@ -106,14 +111,6 @@ fn apply(g: &mut ExprGraph, a: &M3, v: V3) -> V3 {
     })
 }
 
-/// `Aᵀ v`.
-fn apply_t(g: &mut ExprGraph, a: &M3, v: V3) -> V3 {
-    std::array::from_fn(|i| {
-        let terms: Vec<ExprId> = (0..3).map(|k| g.mul(a[k][i], v[k])).collect();
-        g.sum(&terms)
-    })
-}
-
 /// `A B`.
 fn mul(g: &mut ExprGraph, a: &M3, b: &M3) -> M3 {
     std::array::from_fn(|i| {
@@ -187,7 +184,8 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
         Pose { r, p }
     });
-    let mut one = |frame: &Frame| frame_kinematics(&mut g, robot, &frames, &poses, base, frame, nv);
+    let mut one =
+        |frame: &Frame| frame_kinematics(&mut g, robot, &frames, &q, &poses, base, frame, nv);
     let end_effector = one(&robot.end_effector);
     let named = robot.frames.iter().map(&mut one).collect();
     Kinematics {
@@ -201,6 +199,7 @@ fn frame_kinematics(
     g: &mut ExprGraph,
     robot: &Robot,
     frames: &JointFrames,
+    q: &[ExprId],
     poses: &[Pose],
     base: Option<Pose>,
     frame: &Frame,
@@ -226,19 +225,53 @@ fn frame_kinematics(
             j[(3 + k) * nv + col] = v[k];
         }
     };
-    // Body Jacobian: joint columns, then a floating base's (z = e_c at p = 0).
-    for i in robot.frame_path(frame) {
-        let z = column(&poses[i].r, 2);
-        let lin = apply_t(g, &r_f, z);
-        let (w, v) = match robot.joints[i].kind {
-            JointKind::Revolute => {
-                let d = g.sub3(poses[i].p, p_f);
-                let dz = g.cross(d, z);
-                (lin, apply_t(g, &r_f, dz))
-            }
-            JointKind::Prismatic => ([zero; 3], lin),
+    // Body Jacobian, from the frame towards the base: X = T_{f,J_j} starts at K_f⁻¹ and
+    // moves past each joint, X ← X · Rot_z(−θ_j) · C_j; column j = [Ad_X] A_j.
+    let k_inv = trans_inv(&k);
+    let (xr, xp) = rows_of(&k_inv);
+    let mut x = Pose {
+        r: std::array::from_fn(|i| std::array::from_fn(|j| g.constant(xr[i][j]))),
+        p: g.const3(xp),
+    };
+    let motions = joint_motions(g, frames, q);
+    for i in robot.frame_path(frame).into_iter().rev() {
+        let m = &motions[i];
+        let z = column(&x.r, 2);
+        let (w, v) = match m.frame.kind {
+            JointKind::Revolute => (z, g.cross(x.p, z)),
+            JointKind::Prismatic => ([zero; 3], z),
         };
         set(&mut j_b, ov + i, w, v);
+        // X · Rot_z(−θ): columns (c a₀ − s a₁, s a₀ + c a₁, a₂); X · Trans_z(−θ): p − θ a₂.
+        match m.frame.kind {
+            JointKind::Revolute => {
+                let (a0, a1) = (column(&x.r, 0), column(&x.r, 1));
+                let ca0 = g.scale3(m.cos, a0);
+                let sa1 = g.scale3(m.sin, a1);
+                let col0 = g.sub3(ca0, sa1);
+                let sa0 = g.scale3(m.sin, a0);
+                let ca1 = g.scale3(m.cos, a1);
+                let col1 = g.add3(sa0, ca1);
+                x.r = std::array::from_fn(|r| [col0[r], col1[r], x.r[r][2]]);
+            }
+            JointKind::Prismatic => {
+                let d = g.scale3(m.q, z);
+                x.p = g.sub3(x.p, d);
+            }
+        }
+        // X · C_j.
+        let shift = apply_const(g, &x.r, m.frame.p);
+        x.p = g.add3(x.p, shift);
+        x.r = mul_const(g, &x.r, &m.frame.r);
+    }
+    if ov > 0 {
+        // X = T_{f,b}: the base columns are [Ad_X].
+        for c in 0..3 {
+            let w = column(&x.r, c);
+            let v = g.cross(x.p, w);
+            set(&mut j_b, c, w, v);
+            set(&mut j_b, 3 + c, [zero; 3], w);
+        }
     }
     let world = match base {
         None => Pose { r: r_f, p: p_f },
@@ -251,19 +284,6 @@ fn frame_kinematics(
             }
         }
     };
-    if ov > 0 {
-        let minus_p = g.sub3([zero; 3], p_f);
-        for c in 0..3 {
-            // Row c of R_f is R_fᵀ e_c.
-            let w = r_f[c];
-            let mut e = [zero; 3];
-            e[c] = g.one();
-            let pe = g.cross(minus_p, e);
-            let v = apply_t(g, &r_f, pe);
-            set(&mut j_b, c, w, v);
-            set(&mut j_b, 3 + c, [zero; 3], w);
-        }
-    }
     // Space Jacobian: joint axes in {0}, then a floating base's [Ad_{T_0b}].
     for i in robot.frame_path(frame) {
         let (z, p) = match base {
