@@ -127,7 +127,7 @@ fn main() {
         });
     }
     for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {
-        let robot = random_tree(seed, tree_spec(dof, floating));
+        let robot = with_leaf_frames(random_tree(seed, tree_spec(dof, floating)));
         let scalar = if k % 3 == 2 { Scalar::F32 } else { Scalar::F64 };
         cases.push(Case {
             module: format!("tree_{seed}_{}", scalar.as_str()),
@@ -166,9 +166,14 @@ fn main() {
         std::fs::write(out.join(&file), code).expect("OUT_DIR is writable");
         let (nq, nv) = (case.robot.nq(), case.robot.nv());
         let s = case.scalar.as_str();
+        let frames = if case.robot.frames.is_empty() {
+            ""
+        } else {
+            ", frames"
+        };
         writeln!(
             modules,
-            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {nq}, {nv}, {s});",
+            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
             m = case.module
         )
         .ok();

@@ -3,7 +3,7 @@
 
 use dynamics_model::random::{random_chain, ChainSpec};
 use dynamics_model::{LoadOptions, Robot};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Matrix4};
 
 /// Where a compiled case's robot comes from (so the tests can load the same model).
 #[derive(Clone, Copy, Debug)]
@@ -51,9 +51,9 @@ impl Spec {
                 };
                 dynamics_model::load_file(&path, &options).unwrap_or_else(|e| panic!("{e}"))
             }
-            Spec::Tree(seed, dof, floating) => {
-                dynamics_model::random::random_tree(seed, tree_spec(dof, floating))
-            }
+            Spec::Tree(seed, dof, floating) => with_leaf_frames(
+                dynamics_model::random::random_tree(seed, tree_spec(dof, floating)),
+            ),
         }
     }
 }
@@ -83,6 +83,20 @@ pub trait GeneratedDynamics: Sync {
     fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64>;
     /// `q̈(q, q̇, τ)`.
     fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> DVector<f64>;
+    /// `T_{0,n+1}(q)` as a homogeneous matrix.
+    fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64>;
+    /// `J_s(q)`, 6×nv.
+    fn jacobian_space(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `J_b(q)`, 6×nv.
+    fn jacobian_body(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `FRAME_NAMES` (empty without named frames).
+    fn frame_names(&self) -> Vec<&'static str>;
+    /// `frame_poses(q)` as homogeneous matrices.
+    fn frame_poses(&self, q: &[f64]) -> Vec<Matrix4<f64>>;
+    /// `frame_jacobians_space(q)`.
+    fn frame_jacobians_space(&self, q: &[f64]) -> Vec<DMatrix<f64>>;
+    /// `frame_jacobians_body(q)`.
+    fn frame_jacobians_body(&self, q: &[f64]) -> Vec<DMatrix<f64>>;
 }
 
 /// One compiled robot.
@@ -99,6 +113,47 @@ pub struct Case {
 
 macro_rules! adapter {
     ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+        adapter!($m, $nq, $nv, $s, {
+            fn frame_names(&self) -> Vec<&'static str> {
+                Vec::new()
+            }
+            fn frame_poses(&self, _: &[f64]) -> Vec<Matrix4<f64>> {
+                Vec::new()
+            }
+            fn frame_jacobians_space(&self, _: &[f64]) -> Vec<DMatrix<f64>> {
+                Vec::new()
+            }
+            fn frame_jacobians_body(&self, _: &[f64]) -> Vec<DMatrix<f64>> {
+                Vec::new()
+            }
+        });
+    };
+    ($m:ident, $nq:literal, $nv:literal, $s:ty, frames) => {
+        adapter!($m, $nq, $nv, $s, {
+            fn frame_names(&self) -> Vec<&'static str> {
+                $m::Robot::FRAME_NAMES.to_vec()
+            }
+            fn frame_poses(&self, q: &[f64]) -> Vec<Matrix4<f64>> {
+                $m::Robot::frame_poses(self, &to_s::<$s, $nq>(q))
+                    .iter()
+                    .map(homogeneous)
+                    .collect()
+            }
+            fn frame_jacobians_space(&self, q: &[f64]) -> Vec<DMatrix<f64>> {
+                $m::Robot::frame_jacobians_space(self, &to_s::<$s, $nq>(q))
+                    .iter()
+                    .map(|j| DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64))
+                    .collect()
+            }
+            fn frame_jacobians_body(&self, q: &[f64]) -> Vec<DMatrix<f64>> {
+                $m::Robot::frame_jacobians_body(self, &to_s::<$s, $nq>(q))
+                    .iter()
+                    .map(|j| DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64))
+                    .collect()
+            }
+        });
+    };
+    ($m:ident, $nq:literal, $nv:literal, $s:ty, { $($frames:tt)* }) => {
         impl $crate::GeneratedDynamics for $m::Robot {
             fn dof(&self) -> usize {
                 $m::Robot::DOF
@@ -142,6 +197,18 @@ macro_rules! adapter {
                     &to_s::<$s, $nv>(tau),
                 ))
             }
+            fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64> {
+                homogeneous(&$m::Robot::end_effector_pose(self, &to_s::<$s, $nq>(q)))
+            }
+            fn jacobian_space(&self, q: &[f64]) -> DMatrix<f64> {
+                let j = $m::Robot::jacobian_space(self, &to_s::<$s, $nq>(q));
+                DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
+            }
+            fn jacobian_body(&self, q: &[f64]) -> DMatrix<f64> {
+                let j = $m::Robot::jacobian_body(self, &to_s::<$s, $nq>(q));
+                DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
+            }
+            $($frames)*
         }
     };
 }
@@ -176,6 +243,11 @@ fn to_s<T: Real + nalgebra::Scalar, const N: usize>(x: &[f64]) -> nalgebra::SVec
     nalgebra::SVector::<T, N>::from_fn(|i, _| T::from_f64(x[i]))
 }
 
+fn homogeneous<T: Real + nalgebra::RealField>(x: &nalgebra::Isometry3<T>) -> Matrix4<f64> {
+    let m = x.to_homogeneous();
+    Matrix4::from_fn(|i, j| m[(i, j)].to_f64())
+}
+
 fn to_d<T: Real + nalgebra::Scalar, const N: usize>(x: nalgebra::SVector<T, N>) -> DVector<f64> {
     DVector::from_fn(N, |i, _| x[i].to_f64())
 }
@@ -183,9 +255,9 @@ fn to_d<T: Real + nalgebra::Scalar, const N: usize>(x: nalgebra::SVector<T, N>) 
 /// The generated modules and [`CASES`].
 pub mod generated {
     #![allow(missing_docs)]
-    use super::{to_d, to_s};
+    use super::{homogeneous, to_d, to_s};
     use super::{Case, Spec};
-    use nalgebra::{DMatrix, DVector};
+    use nalgebra::{DMatrix, DVector, Matrix4};
     include!(concat!(env!("OUT_DIR"), "/cases.rs"));
 }
 

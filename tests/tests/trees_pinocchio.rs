@@ -106,3 +106,81 @@ fn generated_trees_reproduce_pinocchio() {
     }
     assert_eq!(count, 3, "the three trees are compiled");
 }
+
+/// The named frames (every leaf link of the URDF, the default on a tree) against Pinocchio's
+/// `oMf` and `getFrameJacobian` in `LOCAL` (our body Jacobian) and `WORLD` (our space
+/// Jacobian) at every sample (`data/reference/trees/<robot>.frames.json`, made by
+/// `tools/frame_reference.py`): rows (v, ω) → (ω, v), columns mapped as the velocity.
+#[test]
+fn generated_frames_reproduce_pinocchio() {
+    let mut worst = [0.0f64; 3];
+    let mut count = 0;
+    for case in CASES {
+        let Spec::UrdfTree(name, floating) = case.spec else {
+            continue;
+        };
+        let data = json(&format!("{name}.frames"));
+        let names: Vec<&str> = data["frames"]
+            .as_array()
+            .expect("frames")
+            .iter()
+            .map(|x| x.as_str().expect("name"))
+            .collect();
+        let ours = case.imp.frame_names();
+        let mut sorted = ours.clone();
+        sorted.sort_unstable();
+        let mut theirs = names.clone();
+        theirs.sort_unstable();
+        assert_eq!(
+            sorted, theirs,
+            "{name}: the default frames are the leaf links"
+        );
+        let nv = case.imp.nv();
+        for (k, s) in data["samples"]
+            .as_array()
+            .expect("samples")
+            .iter()
+            .enumerate()
+        {
+            let q = vecf(&s["q"]);
+            let poses = case.imp.frame_poses(&q);
+            let bodies = case.imp.frame_jacobians_body(&q);
+            let spaces = case.imp.frame_jacobians_space(&q);
+            for (f, frame) in names.iter().enumerate() {
+                let i = ours.iter().position(|x| x == frame).expect("frame");
+                let what = |w: &str| format!("{name} sample {k} frame {frame}: {w}");
+                let pose: Vec<f64> = s["oMf"][f]
+                    .as_array()
+                    .expect("rows")
+                    .iter()
+                    .flat_map(vecf)
+                    .collect();
+                let ours_pose: Vec<f64> = (0..16).map(|e| poses[i][(e / 4, e % 4)]).collect();
+                let mut check = |slot: usize, w: &str, x: &[f64], y: &[f64]| {
+                    let (err, scale) = dynamics_tests::assert_close(&what(w), x, y, 1e-9, 1e-12);
+                    worst[slot] = worst[slot].max(err / scale.max(1e-300));
+                };
+                check(0, "oMf", &ours_pose, &pose);
+                for (slot, key, j) in [(1, "J_local", &bodies[i]), (2, "J_world", &spaces[i])] {
+                    let rows = s[key][f].as_array().expect("rows");
+                    let theirs: Vec<f64> = (0..6 * nv)
+                        .map(|e| {
+                            let (r, c) = (e / nv, e % nv);
+                            rows[(r + 3) % 6][pin(c, floating)]
+                                .as_f64()
+                                .expect("number")
+                        })
+                        .collect();
+                    let x: Vec<f64> = (0..6 * nv).map(|e| j[(e / nv, e % nv)]).collect();
+                    check(slot, key, &x, &theirs);
+                }
+                count += 1;
+            }
+        }
+    }
+    assert!(count >= 3 * 20 * 4, "{count} frame samples");
+    println!(
+        "{count} frame samples: worst relative errors pose {:e}, J_b (LOCAL) {:e}, J_s (WORLD) {:e}",
+        worst[0], worst[1], worst[2]
+    );
+}
