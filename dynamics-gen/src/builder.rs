@@ -98,11 +98,23 @@ impl Builder {
         self
     }
 
-    /// URDF: the link whose frame is the end-effector frame {n+1}. The generated code has no
-    /// pose or Jacobian functions yet, so today this changes nothing in it (the header records
-    /// it; the CLI's `eval` uses it for `end_effector_pose` and `f_tip`).
+    /// URDF: the link whose frame is the end-effector frame {n+1}, whose pose and Jacobians
+    /// `end_effector_pose`, `jacobian_space` and `jacobian_body` compute (default: the child
+    /// link of the last movable joint).
     pub fn tip(mut self, link: impl Into<String>) -> Self {
         self.options.load.tip = Some(link.into());
+        self
+    }
+
+    /// URDF: the links whose frames get `frame_poses`, `frame_jacobians_space` and
+    /// `frame_jacobians_body` (feet, hands), in this order (`FRAME_NAMES`). Default: on a
+    /// tree every leaf link of the file, on a serial chain none; an empty list asks for none.
+    pub fn frames<I, S>(mut self, links: I) -> Self
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        self.options.load.frames = Some(links.into_iter().map(Into::into).collect());
         self
     }
 
@@ -196,6 +208,9 @@ impl Builder {
         }
         if let Some(tip) = &o.load.tip {
             s += &format!(".tip({tip:?})");
+        }
+        if let Some(frames) = &o.load.frames {
+            s += &format!(".frames({frames:?})");
         }
         for (joint, value) in &o.load.lock {
             s += &format!(".lock({joint:?}, {value:?})");

@@ -377,13 +377,35 @@ fn lock_accepts_the_comma_form_and_constants() {
 }
 
 #[test]
-fn tip_and_ignored_urdf_dynamics_are_noted() {
+fn tip_and_frames_change_the_generated_kinematics() {
     let out = run(&["stats", "ur5", "--tip", "ee_link"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(
-        text(&out.stderr).contains("note: --tip"),
+        !text(&out.stderr).contains("note: --tip"),
         "{}",
         text(&out.stderr)
+    );
+    let default = text(&run(&["generate", "ur5"]).stdout);
+    let ee_link = text(&run(&["generate", "ur5", "--tip", "ee_link"]).stdout);
+    assert!(default.contains("The end-effector frame is `wrist_3_link`"));
+    assert!(ee_link.contains("The end-effector frame is `ee_link` on link `wrist_3_link`"));
+    // A serial chain has no named frames unless asked; `--frame` names them, in order.
+    assert!(!default.contains("FRAME_NAMES"));
+    let framed = text(&run(&["generate", "ur5", "--frame", "wrist_3_link,base_link"]).stdout);
+    assert!(
+        framed.contains(
+            r#"pub const FRAME_NAMES: [&'static str; 2] = ["wrist_3_link", "base_link"];"#
+        ),
+        "{framed}"
+    );
+    let bad = run(&["generate", "ur5", "--frame", "foot"]);
+    assert_eq!(bad.status.code(), Some(1));
+    let err = text(&bad.stderr);
+    assert!(
+        err.contains(
+            "link `foot`: field `frame`: the file has no link of this name to use as a frame"
+        ),
+        "{err}"
     );
 }
 

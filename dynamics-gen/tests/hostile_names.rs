@@ -250,11 +250,12 @@ fn hostile_names_in_urdf_and_toml_through_generate_file() {
                 "{derived}"
             );
             check_file(&code, &derived, &format!("{k} {format:?}"));
-            // Tip and lock option values reach the header too.
+            // Tip, frame and lock option values reach the header (and the frames the code).
             if format == Format::Urdf {
                 let options = Options {
                     load: LoadOptions {
                         tip: Some(format!("l2{written}")),
+                        frames: Some(vec![format!("l2{written}"), format!("l1{written}")]),
                         ..Default::default()
                     },
                     ..Default::default()
@@ -281,6 +282,11 @@ fn hostile_names_in_modern_robotics_lists() {
             l.name = format!("{}{h}", l.name);
         }
         r.end_effector.name = h.to_string();
+        r.frames = vec![dynamics_model::Frame {
+            name: format!("f{h}"),
+            parent: Some(0),
+            home: nalgebra::Matrix4::identity(),
+        }];
         let options = Options {
             name: Some("Arm".into()),
             ..Default::default()

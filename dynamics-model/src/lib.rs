@@ -7,7 +7,9 @@
 //! - Units SI: m, kg, s, rad; joint values q in rad (revolute) or m (prismatic).
 //! - Twists and screw axes are `(ω, v)` (angular part first); wrenches are `(m, f)`.
 //! - Frames: {0} is the space (base) frame; {i} is the frame of link i (i = 1..n), moved by
-//!   joint i; {n+1} is the end-effector (tip) frame.
+//!   joint i; {n+1} is the end-effector (tip) frame. Named frames ([`Robot::frames`]: feet,
+//!   hands, sensors) are [`Frame`]s like the end effector: a link (or the base) and a
+//!   constant pose in its frame.
 //! - Trees: link i hangs from `λ(i)` ([`Link::parent`]; `None` = the base), always an
 //!   earlier link, so every vector lists a joint after the joints between it and the base.
 //!   A serial chain has `λ(i) = i − 1`.

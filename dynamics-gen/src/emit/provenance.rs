@@ -156,6 +156,18 @@ fn describe(generated: &Generated, options: &Options) -> String {
     if let Some(tip) = &options.load.tip {
         parts.push(format!("tip {}", inert(tip)));
     }
+    if !robot.frames.is_empty() {
+        let names: Vec<String> = robot.frames.iter().map(|f| inert(&f.name)).collect();
+        parts.push(format!(
+            "frames {}{}",
+            names.join(", "),
+            if options.load.frames.is_some() {
+                " (by option)"
+            } else {
+                ""
+            }
+        ));
+    }
     if !options.load.lock.is_empty() {
         let locks: Vec<String> = options
             .load

@@ -19,7 +19,7 @@ pub const MANIFEST_DIR_OVERRIDE: &str = "DYNAMICS_GEN_MANIFEST_DIR";
 pub struct Attr {
     /// `file = "…"`: the path as written, and its literal.
     pub file: Option<syn::LitStr>,
-    /// Generator options (`scalar`, `no_std`, `nalgebra`, `gravity`, `floating_base`, `tip`,
+    /// Generator options (`scalar`, `no_std`, `nalgebra`, `gravity`, `floating_base`, `tip`, `frames`,
     /// `lock`).
     pub options: Options,
 }
@@ -89,6 +89,19 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     let lit: syn::LitStr = meta.value()?.parse()?;
                     attr.options.load.tip = Some(lit.value());
                 }
+                "frames" => {
+                    let mut links = Vec::new();
+                    meta.parse_nested_meta(|inner| {
+                        match inner.path.get_ident() {
+                            Some(link) if inner.input.is_empty() || inner.input.peek(syn::Token![,]) => {
+                                links.push(link.to_string());
+                                Ok(())
+                            }
+                            _ => Err(inner.error("expected link names: `frames(LF_FOOT, RF_FOOT)`")),
+                        }
+                    })?;
+                    attr.options.load.frames = Some(links);
+                }
                 "lock" => {
                     meta.parse_nested_meta(|inner| {
                         let Some(joint) = inner.path.get_ident().map(ToString::to_string) else {
@@ -119,7 +132,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", lock(JOINT = VALUE, ..), method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), lock(JOINT = VALUE, ..), method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

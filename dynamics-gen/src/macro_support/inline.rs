@@ -10,6 +10,7 @@
 //! joint revolute left_shoulder { parent: torso, .. },   // the link it hangs from (a name or
 //!                                  // a string); default: the previous joint's link
 //! end_effector hand { parent: left_forearm, home: { .. } },  // default: the last joint's link
+//! frame left_foot { parent: left_shin, home: { xyz: [0, 0, -0.3] } },  // named frames, any number
 //! ```
 //!
 //! Each key is checked here (known, not repeated, of the right kind, with its tokens
@@ -61,7 +62,7 @@ struct Block {
     header: TokenStream,
 }
 
-const BLOCKS: &[&str] = &["joint", "link", "body", "end_effector", "base"];
+const BLOCKS: &[&str] = &["joint", "link", "body", "end_effector", "frame", "base"];
 
 /// `parent: LINK` of a joint and of the end effector (the TOML `parent`).
 const PARENT: (&str, Type) = ("parent", Type::Name);
@@ -101,6 +102,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     let mut doc = Table::new();
     let mut joints = Vec::new();
     let mut end_effector: Option<Table> = None;
+    let mut frames: Vec<Toml> = Vec::new();
     let mut base: Option<Table> = None;
     let mut seen = Vec::new();
     let mut early = Vec::new();
@@ -126,7 +128,11 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
                         errors.at(&b.header, "duplicate `end_effector`: a robot has one end-effector frame");
                         continue;
                     }
-                    end_effector = Some(end_effector_table(b, &mut spans, &mut errors));
+                    end_effector = Some(frame_table(b, false, &mut spans, &mut errors));
+                }
+                "frame" => {
+                    let t = frame_table(b, true, &mut spans, &mut errors);
+                    frames.push(Toml::Table(t));
                 }
                 "base" => {
                     if base.is_some() {
@@ -138,7 +144,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
                 _ => errors.at(
                     &b.keyword,
                     format!(
-                        "a `{}` block goes inside a joint; at the top level are `joint`, `base`, `end_effector` and the keys {}",
+                        "a `{}` block goes inside a joint; at the top level are `joint`, `base`, `end_effector`, `frame` and the keys {}",
                         b.keyword,
                         schema::names(ROBOT_KEYS)
                     ),
@@ -162,6 +168,9 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     doc.insert("joint".into(), Toml::Array(joints));
     if let Some(ee) = end_effector {
         doc.insert("end_effector".into(), Toml::Table(ee));
+    }
+    if !frames.is_empty() {
+        doc.insert("frame".into(), Toml::Array(frames));
     }
     if errors.any() {
         for inv in &early {
@@ -633,27 +642,40 @@ fn bodies_into(
     link.insert("body".into(), Toml::Array(out));
 }
 
-/// `end_effector NAME { parent: LINK, home: … }`.
-fn end_effector_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table {
-    spans.insert(Part::EndEffector, "", b.header.clone());
+/// `end_effector NAME { parent: LINK, home: … }`, or (`named`) a named frame
+/// `frame NAME { parent: LINK, home: … }` (name and `parent` required).
+fn frame_table(b: Block, named: bool, spans: &mut SpanMap, errors: &mut Errors) -> Table {
+    let kind = if named { "frame" } else { "end effector" };
+    let name = block_name(&b.args, kind, errors);
+    let (part, what) = if named {
+        if name.is_none() {
+            errors.at(
+                &b.header,
+                "a frame needs a name: `frame NAME { parent: LINK, .. }`",
+            );
+        }
+        (Part::Frame(name.clone().unwrap_or_default()), "a frame")
+    } else {
+        (Part::EndEffector, "the end effector")
+    };
+    spans.insert(part.clone(), "", b.header.clone());
     let mut t = Table::new();
-    if let Some(n) = block_name(&b.args, "end effector", errors) {
+    if let Some(n) = name {
         t.insert("name".into(), Toml::String(n));
     }
     let mut seen = Vec::new();
     for item in b.items {
         match item {
             Item::Entry(e) => {
-                let Some(ty) = key_type(&e, &[PARENT, HOME], &mut seen, "the end effector", errors)
-                else {
+                let Some(ty) = key_type(&e, &[PARENT, HOME], &mut seen, what, errors) else {
                     continue;
                 };
                 let key = e.key.to_string();
-                spans.insert(Part::EndEffector, key.clone(), e.tokens.clone());
+                spans.insert(part.clone(), key.clone(), e.tokens.clone());
                 if let Kind::Table(entries) = &e.value.kind {
                     for sub in entries {
                         spans.insert(
-                            Part::EndEffector,
+                            part.clone(),
                             format!("{key}.{}", sub.key),
                             sub.tokens.clone(),
                         );
@@ -665,9 +687,15 @@ fn end_effector_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Tab
             }
             Item::Block(inner) => errors.at(
                 &inner.keyword,
-                "the end effector holds `parent` and `home` only",
+                format!("{what} holds `parent` and `home` only"),
             ),
         }
+    }
+    if named && !t.contains_key("parent") {
+        errors.at(
+            &b.header,
+            "a frame needs `parent: LINK` (the link it is attached to, or the base)",
+        );
     }
     t
 }

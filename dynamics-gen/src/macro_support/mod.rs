@@ -64,8 +64,9 @@
 //! Options: `scalar = "f32"`, `no_std`, `nalgebra = path::to::nalgebra`,
 //! `gravity = [gx, gy, gz]`, `floating_base` (a free 6-DoF joint between the world and the
 //! base), `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
-//! and for URDF `tip = "LINK"` and `lock(JOINT = VALUE, ..)`. (`tip` and the TOML
-//! `end_effector` change nothing in the generated code yet: it has no pose functions.)
+//! and for URDF `tip = "LINK"` (the end effector of `end_effector_pose` and the Jacobians),
+//! `frames(LINK, ..)` (the named frames of `frame_poses` and the frame Jacobians; default: a
+//! tree's leaf links) and `lock(JOINT = VALUE, ..)`.
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the
 //! file changes. The environment variable [`derive::MANIFEST_DIR_OVERRIDE`] replaces
 //! `CARGO_MANIFEST_DIR` when set.

@@ -16,6 +16,8 @@ pub enum Part {
     Link(usize),
     /// The end-effector frame.
     EndEffector,
+    /// A named frame, by name.
+    Frame(String),
 }
 
 impl Part {
@@ -25,6 +27,7 @@ impl Part {
             Subject::Joint { index: Some(i), .. } => Some(Part::Joint(*i)),
             Subject::Link { index: Some(i), .. } => Some(Part::Link(*i)),
             Subject::EndEffector => Some(Part::EndEffector),
+            Subject::Frame(name) => Some(Part::Frame(name.clone())),
             _ => None,
         }
     }

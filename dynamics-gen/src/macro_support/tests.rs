@@ -225,6 +225,15 @@ com = [0, 0, -0.15]
 name = "hand"
 parent = "left_arm"
 home = { xyz = [0, 0, -0.3] }
+
+[[frame]]
+name = "right_hand"
+parent = "right_arm"
+home = { xyz = [0, 0, -0.3], rpy = [0, 0, 1.5] }
+
+[[frame]]
+name = "head"
+parent = "torso"
 "#;
 
 #[test]
@@ -254,6 +263,8 @@ fn a_tree_on_a_floating_base_inline_equals_toml() {
             inertia: [0.01, 0.01, 0.002, 0, 0, 0], com: [0, 0, -0.15],
         },
         end_effector hand { parent: left_arm, home: { xyz: [0, 0, -0.3] } },
+        frame right_hand { parent: link3, home: { xyz: [0, 0, -0.3], rpy: [0, 0, 1.5] } },
+        frame "head" { parent: torso },
     });
     // The flat form names the link `link3`; the file names it `right_arm`.
     let toml = dynamics_model::toml_format::from_str(
@@ -272,6 +283,12 @@ fn a_tree_on_a_floating_base_inline_equals_toml() {
     assert!(inline.base.floating);
     assert_eq!(inline.base.name, "pelvis");
     assert_eq!(inline.end_effector.parent, Some(1));
+    let frames: Vec<(&str, Option<usize>)> = inline
+        .frames
+        .iter()
+        .map(|f| (f.name.as_str(), f.parent))
+        .collect();
+    assert_eq!(frames, [("right_hand", Some(2)), ("head", Some(0))]);
 }
 
 #[test]
@@ -298,6 +315,8 @@ fn tree_and_base_key_errors_are_accumulated() {
         base other {},
         joint revolute a { parent: [1], screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
         end_effector e { parent: 1, hom: {}, link x {} },
+        frame { parent: a },
+        frame g { home: {}, pose: {} },
     })
     .join("\n");
     for part in [
@@ -310,6 +329,9 @@ fn tree_and_base_key_errors_are_accumulated() {
         "expected a name or a string, found a number",
         "unknown field `hom` in the end effector",
         "the end effector holds `parent` and `home` only",
+        "a frame needs a name",
+        "a frame needs `parent: LINK`",
+        "unknown field `pose` in a frame",
     ] {
         assert!(all.contains(part), "`{part}` missing from:\n{all}");
     }
@@ -324,6 +346,7 @@ fn tree_and_base_model_errors_name_the_field() {
         joint revolute b { parent: link3, screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
         joint revolute c { parent: pelvis, screw: [0, 0, 1, 0, 0, 0], home: {}, mass: 1, inertia: [1, 1, 1, 0, 0, 0] },
         end_effector e { parent: ghost },
+        frame foot { parent: phantom },
     })
     .join("\n");
     for part in [
@@ -331,6 +354,7 @@ fn tree_and_base_model_errors_name_the_field() {
         "joint `a`, `parent`: `nowhere` is neither the base nor a link",
         "joint `b`, `parent`: `link3` is the link of joint 3 `c`, which comes after this joint",
         "end effector, `parent`: `ghost` is neither the base nor a link",
+        "frame `foot`, `parent`: `phantom` is neither the base nor a link",
     ] {
         assert!(all.contains(part), "`{part}` missing from:\n{all}");
     }

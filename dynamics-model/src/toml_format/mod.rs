@@ -92,6 +92,11 @@
 //! parent = "forearm"               # optional: the link (or base) it is attached to;
 //! #                                # default: the last joint's link
 //! home = { xyz = [0, 0, 0.45] }    # its pose in that link's frame
+//!
+//! [[frame]]                        # optional, any number: named frames (feet, hands) whose
+//! name = "camera_optical"          # pose and Jacobians the generated code computes
+//! parent = "camera"                # required: the link (or base) it is attached to
+//! home = { rpy = [-1.5708, 0, -1.5708] }  # its pose in that link's frame (default identity)
 //! ```
 //!
 //! (In TOML, `[joint.link]` and `[[joint.link.body]]` belong to the `[[joint]]` above them,
@@ -118,7 +123,7 @@
 //!
 //! `home` is relative, `M_{λ(i),i}`, as in the book's `Mlist`: frame {i} seen from its
 //! parent's frame ({i−1} on a serial chain; the base's frame is {0}).
-//! `end_effector.home` is relative to the end effector's `parent` link.
+//! `end_effector.home` and `frame.home` are relative to their `parent` link.
 //!
 //! ## Inertia of a link
 //!

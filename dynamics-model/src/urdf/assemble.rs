@@ -123,7 +123,7 @@ pub fn robot(
             parent: b.checked_sub(1),
             home: pose[l],
         }),
-        None => Err(Invalid::new(
+        None => Err(vec![Invalid::new(
             subject,
             field,
             format!(
@@ -134,9 +134,9 @@ pub fn robot(
                 "choose a link of the robot, e.g. the floating base `{}`",
                 tree.link_names[tree.root]
             ),
-        )),
+        )]),
     };
-    let end_effector = frame_at(tip_link, Subject::EndEffector, "tip").map_err(|e| vec![e])?;
+    let end_effector = frame_at(tip_link, Subject::EndEffector, "tip")?;
     // Default frames: the leaf links of a tree (depth first).
     let is_tree = parent
         .iter()
@@ -161,8 +161,7 @@ pub fn robot(
             };
             frame_at(l, subject, "frame")
         })
-        .collect::<Result<_, _>>()
-        .map_err(|e| vec![e])?;
+        .collect::<Result<_, _>>()?;
     let mut m0: Vec<Matrix4<f64>> = Vec::with_capacity(n);
     let mut out_joints = Vec::with_capacity(n);
     let mut out_links = Vec::with_capacity(n);

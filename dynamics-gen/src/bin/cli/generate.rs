@@ -8,7 +8,7 @@ use dynamics_gen::{Options, Provenance, Scalar};
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
     let (robot, source, bytes) = args.model.load_with_source()?;
-    super::joints::ignored_notes(&robot, &args.model);
+    super::joints::ignored_notes(&robot);
     let options = Options {
         name: args.name.clone(),
         scalar: args.scalar,
@@ -64,6 +64,9 @@ fn command(args: &GenerateArgs) -> String {
     if m.floating_base {
         words.push("--floating-base".into());
     }
+    if !m.frame.is_empty() {
+        words.extend(["--frame".into(), quote(&m.frame.join(","))]);
+    }
     let locks: Vec<String> = m.lock.iter().map(|(j, v)| format!("{j}={v}")).collect();
     if !locks.is_empty() {
         words.extend(["--lock".into(), quote(&locks.join(","))]);
@@ -95,7 +98,7 @@ fn quote(word: &str) -> String {
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
 pub fn stats(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
-    super::joints::ignored_notes(&robot, args);
+    super::joints::ignored_notes(&robot);
     let options = Options {
         load: args.load_options(),
         ..Options::default()

@@ -49,13 +49,13 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             s.join(", ")
         );
     }
-    ignored_notes(&robot, args);
+    ignored_notes(&robot);
     Ok(())
 }
 
 /// Notes on stderr for what a robot file or option holds that the generated code does not
 /// use yet, so nothing is ignored silently: URDF `<dynamics damping friction>` and the tip.
-pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot, args: &ModelArgs) {
+pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot) {
     let with_dynamics: Vec<&str> = robot
         .joints
         .iter()
@@ -67,11 +67,6 @@ pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot, args: &ModelAr
             "note: the <dynamics damping friction> of {} {} not part of the dynamics (friction is not modelled yet; Pinocchio's rnea ignores it too)",
             with_dynamics.join(", "),
             if with_dynamics.len() == 1 { "is" } else { "are" }
-        );
-    }
-    if args.tip.is_some() {
-        eprintln!(
-            "note: --tip sets the end-effector frame, used by `eval` (end_effector_pose, f_tip); the generated code has no pose or Jacobian functions yet, so it does not change it"
         );
     }
 }

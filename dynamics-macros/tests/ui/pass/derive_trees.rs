@@ -11,6 +11,15 @@ pub struct TwoArms;
 #[dynamics(file = "tests/data/robots/trees/solo12.urdf", floating_base)]
 pub struct Solo;
 
+// The feet in a chosen order (default: every leaf link of the file).
+#[derive(Dynamics)]
+#[dynamics(
+    file = "tests/data/robots/trees/solo12.urdf",
+    floating_base,
+    frames(HR_FOOT, FL_FOOT)
+)]
+pub struct SoloFeet;
+
 fn main() {
     assert_eq!((TwoArms::NQ, TwoArms::NV), (TwoArms::DOF, TwoArms::DOF));
     assert_eq!((Solo::DOF, Solo::NQ, Solo::NV), (12, 19, 18));
@@ -24,4 +33,14 @@ fn main() {
     assert!(a.norm() < 1e-9);
     let m = Solo.mass_matrix(&q);
     assert_eq!(m[(6, 9)], 0.0); // front-left and front-right hips: different branches
+    // Feet: the default frames are the four leaf links; at the home pose the feet lie below
+    // the base, and each foot's Jacobian has columns for the base and its own leg only.
+    assert_eq!(Solo::FRAME_NAMES.len(), 4);
+    assert_eq!(SoloFeet::FRAME_NAMES, ["HR_FOOT", "FL_FOOT"]);
+    let feet = SoloFeet.frame_poses(&q);
+    assert!(feet.iter().all(|f| f.translation.z < -0.1));
+    assert!(feet[0].translation.x < 0.0 && feet[1].translation.x > 0.0);
+    let j = SoloFeet.frame_jacobians_body(&q);
+    assert!((0..6).all(|c| j[1].column(c).norm() > 0.0));
+    assert!((9..18).all(|c| j[1].column(c).norm() == 0.0)); // not on the front-left leg
 }
