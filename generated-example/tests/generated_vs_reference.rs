@@ -122,3 +122,32 @@ fn pendulum_matches_the_reference() {
     let worst = check(&robot, &f, 2);
     eprintln!("pendulum: worst relative error {worst:e}");
 }
+
+#[test]
+fn ur5_kinematics_match_the_reference() {
+    use generated_example::ur5::Ur5;
+    let robot = dynamics_model::load("ur5", &Default::default()).unwrap();
+    let mut rng = Lcg(3);
+    for _ in 0..20 {
+        let q = rng.vector::<6>(3.0);
+        let qs = q.as_slice();
+        let pose = dynamics_reference::end_effector_pose(&robot, qs);
+        close(
+            "end_effector_pose",
+            Ur5.end_effector_pose(&q).to_homogeneous().as_slice(),
+            pose.as_slice(),
+        );
+        let j_s = dynamics_reference::jacobian_space(&robot, qs);
+        close(
+            "jacobian_space",
+            Ur5.jacobian_space(&q).as_slice(),
+            j_s.as_slice(),
+        );
+        let j_b = dynamics_reference::jacobian_body(&robot, qs);
+        close(
+            "jacobian_body",
+            Ur5.jacobian_body(&q).as_slice(),
+            j_b.as_slice(),
+        );
+    }
+}

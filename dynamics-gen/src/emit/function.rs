@@ -382,10 +382,12 @@ pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> 
                 let s = #s3 * 2.0;
                 ((r10 - r01) / s, (r02 + r20) / s, (r12 + r21) / s, 0.25 * s)
             };
-            #na::Isometry3::from_parts(
-                #na::Translation3::new(p[0], p[1], p[2]),
-                #na::UnitQuaternion::new_unchecked(#na::Quaternion::new(w, x, y, z)),
-            )
+            // A struct literal: `from_parts` would need `RealField`, which nalgebra without
+            // its `std` or `libm` feature does not implement.
+            #na::Isometry3::<#t> {
+                rotation: #na::UnitQuaternion::new_unchecked(#na::Quaternion::new(w, x, y, z)),
+                translation: #na::Translation3::new(p[0], p[1], p[2]),
+            }
         }
     }
 }
