@@ -152,6 +152,7 @@ fn main() {
     let mut registry = String::new();
     let mut list = String::new();
     let mut std_list = String::new();
+    let mut frame_list = String::new();
     let mut modules = String::new();
     for case in &cases {
         let options = Options {
@@ -181,6 +182,14 @@ fn main() {
         if !case.no_std {
             writeln!(std_list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         }
+        if !case.robot.frames.is_empty() && !case.no_std {
+            writeln!(
+                frame_list,
+                "        $mac!({}, {nq}, {nv}, {s});",
+                case.module
+            )
+            .ok();
+        }
         writeln!(
             registry,
             "    Case {{ module: {m:?}, spec: {spec}, scalar: {s:?}, imp: &{m}::Robot }},",
@@ -194,7 +203,7 @@ fn main() {
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(
-        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n"
+        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n"
     );
     std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
 }

@@ -46,6 +46,9 @@ macro_rules! no_alloc {
             black_box(Robot.gravity(black_box(&q)));
             black_box(Robot.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&x)));
             black_box(Robot.forward_dynamics(black_box(&q), black_box(&qd), black_box(&x)));
+            black_box(Robot.end_effector_pose(black_box(&q)));
+            black_box(Robot.jacobian_space(black_box(&q)));
+            black_box(Robot.jacobian_body(black_box(&q)));
         }
         let after = ALLOCATIONS.load(Ordering::SeqCst);
         assert_eq!(after - before, 0, "{} allocated", stringify!($m));
@@ -53,10 +56,31 @@ macro_rules! no_alloc {
     }};
 }
 
+macro_rules! no_alloc_frames {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {{
+        use dynamics_tests::generated::$m::Robot;
+        let q = SVector::<$s, $nq>::from_fn(|i, _| 0.3 + 0.1 * i as $s);
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        for _ in 0..3 {
+            black_box(Robot.frame_poses(black_box(&q)));
+            black_box(Robot.frame_jacobians_space(black_box(&q)));
+            black_box(Robot.frame_jacobians_body(black_box(&q)));
+        }
+        let after = ALLOCATIONS.load(Ordering::SeqCst);
+        assert_eq!(after - before, 0, "{} allocated", stringify!($m));
+        FRAMES_CHECKED.fetch_add(1, Ordering::SeqCst);
+    }};
+}
+
+static FRAMES_CHECKED: AtomicUsize = AtomicUsize::new(0);
+
 #[test]
 fn generated_functions_never_allocate() {
     dynamics_tests::with_cases!(no_alloc);
     assert_eq!(CHECKED.load(Ordering::SeqCst), dynamics_tests::CASES.len());
+    // In the same test: the counter is global, and tests run on parallel threads.
+    dynamics_tests::with_frame_cases!(no_alloc_frames);
+    assert!(FRAMES_CHECKED.load(Ordering::SeqCst) >= 6);
     // The counter works: a Vec does allocate.
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     black_box(vec![1u8; 16]);

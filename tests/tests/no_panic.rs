@@ -53,6 +53,18 @@ mod release {
                 pub fn forward_dynamics(q: &Q, qd: &V, tau: &V) -> V {
                     Robot.forward_dynamics(q, qd, tau)
                 }
+                #[no_panic]
+                pub fn end_effector_pose(q: &Q) -> nalgebra::Isometry3<$s> {
+                    Robot.end_effector_pose(q)
+                }
+                #[no_panic]
+                pub fn jacobian_space(q: &Q) -> SMatrix<$s, 6, $nv> {
+                    Robot.jacobian_space(q)
+                }
+                #[no_panic]
+                pub fn jacobian_body(q: &Q) -> SMatrix<$s, 6, $nv> {
+                    Robot.jacobian_body(q)
+                }
                 pub fn call() -> $s {
                     let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
                     let v = V::from_fn(|i, _| 0.1 * i as $s);
@@ -61,7 +73,10 @@ mod release {
                     let g = gravity(&q);
                     let t = inverse_dynamics(&q, &v, &v);
                     let a = forward_dynamics(&q, &v, &t);
-                    m[(0, 0)] + c[0] + g[0] + a[0]
+                    let p = end_effector_pose(&q);
+                    let js = jacobian_space(&q);
+                    let jb = jacobian_body(&q);
+                    m[(0, 0)] + c[0] + g[0] + a[0] + p.translation.x + js[(5, 0)] + jb[(5, 0)]
                 }
             }
         };
@@ -69,10 +84,57 @@ mod release {
 
     dynamics_tests::with_std_cases!(wrappers);
 
+    macro_rules! frame_wrappers {
+        ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+            pub mod $m {
+                use super::super::*;
+                use dynamics_tests::generated::$m::Robot;
+                type Q = SVector<$s, $nq>;
+                #[no_panic]
+                pub fn frame_poses(q: &Q) -> [nalgebra::Isometry3<$s>; Robot::FRAME_NAMES.len()] {
+                    Robot.frame_poses(q)
+                }
+                #[no_panic]
+                pub fn frame_jacobians_space(
+                    q: &Q,
+                ) -> [SMatrix<$s, 6, $nv>; Robot::FRAME_NAMES.len()] {
+                    Robot.frame_jacobians_space(q)
+                }
+                #[no_panic]
+                pub fn frame_jacobians_body(
+                    q: &Q,
+                ) -> [SMatrix<$s, 6, $nv>; Robot::FRAME_NAMES.len()] {
+                    Robot.frame_jacobians_body(q)
+                }
+                pub fn call() -> $s {
+                    let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
+                    frame_poses(&q)[0].translation.x
+                        + frame_jacobians_space(&q)[0][(5, 0)]
+                        + frame_jacobians_body(&q)[0][(5, 0)]
+                }
+            }
+        };
+    }
+
+    pub mod frames {
+        dynamics_tests::with_frame_cases!(frame_wrappers);
+    }
+
     macro_rules! call {
         ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
             assert!($m::call().is_finite());
         };
+    }
+
+    macro_rules! call_frames {
+        ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+            assert!(frames::$m::call().is_finite());
+        };
+    }
+
+    #[test]
+    fn frame_functions_have_no_panic_path() {
+        dynamics_tests::with_frame_cases!(call_frames);
     }
 
     #[test]
