@@ -19,7 +19,8 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FunctionStats {
     /// The function's name (`mass_matrix`, `coriolis`, `gravity`, `inverse_dynamics`,
-    /// `forward_dynamics`, `end_effector_pose`, `jacobian_space`, `jacobian_body`, and with
+    /// `forward_dynamics`, `kinetic_energy`, `potential_energy`, `end_effector_pose`,
+    /// `jacobian_space`, `jacobian_body`, and with
     /// named frames `frame_poses`, `frame_jacobians_space`, `frame_jacobians_body`).
     pub name: &'static str,
     /// Its operation counts.
@@ -115,11 +116,17 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             lines: function_lines(code, name),
         })
         .collect();
+    functions.push(FunctionStats {
+        name: "kinetic_energy",
+        ops: d.graph.op_counts(&[d.kinetic_energy]),
+        lines: function_lines(code, "kinetic_energy"),
+    });
     let k = &generated.kinematics;
     let all = |f: fn(&FrameKinematics) -> &Vec<ExprId>| -> Vec<ExprId> {
         k.frames.iter().flat_map(|x| f(x).iter().copied()).collect()
     };
     let mut kinematics: Vec<(&'static str, Vec<ExprId>)> = vec![
+        ("potential_energy", vec![k.potential_energy]),
         ("end_effector_pose", k.end_effector.pose.clone()),
         ("jacobian_space", k.end_effector.jacobian_space.clone()),
         ("jacobian_body", k.end_effector.jacobian_body.clone()),
@@ -244,7 +251,7 @@ mod tests {
     fn pendulum_mass_matrix_depends_on_q2_only() {
         let robot = dynamics_model::load("pendulum", &Default::default()).unwrap();
         let s = robot_stats(&robot, &Options::default()).unwrap();
-        assert_eq!(s.functions.len(), 8);
+        assert_eq!(s.functions.len(), 10);
         assert_eq!(s.dof, 2);
         // M(q) of a serial chain never depends on q_1: only q_2 needs a sin/cos.
         assert_eq!(s.functions[0].name, "mass_matrix");
@@ -252,6 +259,6 @@ mod tests {
         // Forward dynamics divides by the LDLᵀ pivots.
         assert!(s.functions[4].ops.div >= 1);
         assert!(s.functions.iter().all(|f| f.lines > 0));
-        assert_eq!(s.to_string().lines().count(), 9);
+        assert_eq!(s.to_string().lines().count(), 11);
     }
 }

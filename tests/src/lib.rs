@@ -83,6 +83,10 @@ pub trait GeneratedDynamics: Sync {
     fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64>;
     /// `q̈(q, q̇, τ)`.
     fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> DVector<f64>;
+    /// `K(q, q̇)`.
+    fn kinetic_energy(&self, q: &[f64], qd: &[f64]) -> f64;
+    /// `P(q)`.
+    fn potential_energy(&self, q: &[f64]) -> f64;
     /// `T_{0,n+1}(q)` as a homogeneous matrix.
     fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64>;
     /// `J_s(q)`, 6×nv.
@@ -197,6 +201,12 @@ macro_rules! adapter {
                     &to_s::<$s, $nv>(tau),
                 ))
             }
+            fn kinetic_energy(&self, q: &[f64], qd: &[f64]) -> f64 {
+                $m::Robot::kinetic_energy(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd)).to_f64()
+            }
+            fn potential_energy(&self, q: &[f64]) -> f64 {
+                $m::Robot::potential_energy(self, &to_s::<$s, $nq>(q)).to_f64()
+            }
             fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64> {
                 homogeneous(&$m::Robot::end_effector_pose(self, &to_s::<$s, $nq>(q)))
             }
@@ -255,7 +265,7 @@ fn to_d<T: Real + nalgebra::Scalar, const N: usize>(x: nalgebra::SVector<T, N>) 
 /// The generated modules and [`CASES`].
 pub mod generated {
     #![allow(missing_docs)]
-    use super::{homogeneous, to_d, to_s};
+    use super::{homogeneous, to_d, to_s, Real};
     use super::{Case, Spec};
     use nalgebra::{DMatrix, DVector, Matrix4};
     include!(concat!(env!("OUT_DIR"), "/cases.rs"));

@@ -93,9 +93,11 @@ fn generated_code_equals_the_reference_implementation() {
     );
 }
 
-/// The end effector's pose and Jacobians, and those of every named frame, against the
-/// reference implementation (`frame_pose`, `frame_jacobian_space`, `frame_jacobian_body`);
-/// same tolerances as M.
+/// The kinetic and potential energies, the end effector's pose and Jacobians, and those of
+/// every named frame, against the reference implementation (`kinetic_energy`,
+/// `potential_energy`, `frame_pose`, `frame_jacobian_space`, `frame_jacobian_body`); same
+/// tolerances as M (P relative to its own size plus that of g, since P can be near zero at
+/// the origin of {0}).
 #[test]
 fn generated_kinematics_equals_the_reference_implementation() {
     let mut worst_by_scalar = [0.0f64; 2];
@@ -114,9 +116,24 @@ fn generated_kinematics_equals_the_reference_implementation() {
             let q: Vec<f64> = (0..robot.nq())
                 .map(|_| round(rng.uniform(-3.0, 3.0)))
                 .collect();
+            let p = dynamics_reference::potential_energy(&robot, &q, &robot.gravity);
+            // P is measured from the origin of {0}: its scale is that of m g · height.
+            let scale = dynamics_reference::gravity_forces(&robot, &q, &robot.gravity).amax();
+            let (x, y) = (case.imp.potential_energy(&q), p);
+            *worst = worst.max((x - y).abs() / (scale + y.abs()));
+            assert!(
+                (x - y).abs() <= rtol * (scale + y.abs()) + atol,
+                "{} P: {x} vs {y}",
+                case.module
+            );
             let mut compare = |what: &str, x: &[f64], y: &[f64]| {
                 *worst = worst.max(check(case, what, x, y, rtol, atol));
             };
+            let qd: Vec<f64> = (0..robot.nv())
+                .map(|_| round(rng.uniform(-2.0, 2.0)))
+                .collect();
+            let k = dynamics_reference::kinetic_energy(&robot, &q, &qd);
+            compare("K", &[case.imp.kinetic_energy(&q, &qd)], &[k]);
             let ee = &robot.end_effector;
             let pose = dynamics_reference::frame_pose(&robot, ee, &q);
             compare(
@@ -154,4 +171,46 @@ fn generated_kinematics_equals_the_reference_implementation() {
         worst_by_scalar[0],
         worst_by_scalar[1]
     );
+}
+
+/// `∂P/∂q = g(q)` and `K = ½ q̇ᵀ M q̇` on the generated code itself: central differences of
+/// `potential_energy` against `gravity` (fixed bases, f64; on a floating base g is taken along
+/// the base's body twist, not along q), to 1e-6 relative.
+#[test]
+fn generated_energies_satisfy_the_identities() {
+    let mut worst = 0.0f64;
+    for case in CASES.iter().filter(|c| c.scalar == "f64") {
+        let robot = case.spec.robot();
+        let mut rng = Rng::new(5);
+        for _ in 0..3 {
+            let q: Vec<f64> = (0..robot.nq()).map(|_| rng.uniform(-3.0, 3.0)).collect();
+            let qd: Vec<f64> = (0..robot.nv()).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            let m = case.imp.mass_matrix(&q);
+            let v = DVector::from_column_slice(&qd);
+            let k = 0.5 * v.dot(&(&m * &v));
+            worst = worst.max(check(
+                case,
+                "K",
+                &[case.imp.kinetic_energy(&q, &qd)],
+                &[k],
+                1e-12,
+                0.0,
+            ));
+            if robot.base.floating {
+                continue;
+            }
+            let g = case.imp.gravity(&q);
+            let h = 1e-6;
+            let dp: Vec<f64> = (0..q.len())
+                .map(|i| {
+                    let (mut a, mut b) = (q.clone(), q.clone());
+                    a[i] += h;
+                    b[i] -= h;
+                    (case.imp.potential_energy(&a) - case.imp.potential_energy(&b)) / (2.0 * h)
+                })
+                .collect();
+            worst = worst.max(check(case, "∂P/∂q", &dp, g.as_slice(), 1e-6, 1e-9));
+        }
+    }
+    println!("energy identities: worst relative error {worst:e}");
 }

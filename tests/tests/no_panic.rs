@@ -54,6 +54,14 @@ mod release {
                     Robot.forward_dynamics(q, qd, tau)
                 }
                 #[no_panic]
+                pub fn kinetic_energy(q: &Q, qd: &V) -> $s {
+                    Robot.kinetic_energy(q, qd)
+                }
+                #[no_panic]
+                pub fn potential_energy(q: &Q) -> $s {
+                    Robot.potential_energy(q)
+                }
+                #[no_panic]
                 pub fn end_effector_pose(q: &Q) -> nalgebra::Isometry3<$s> {
                     Robot.end_effector_pose(q)
                 }
@@ -76,7 +84,8 @@ mod release {
                     let p = end_effector_pose(&q);
                     let js = jacobian_space(&q);
                     let jb = jacobian_body(&q);
-                    m[(0, 0)] + c[0] + g[0] + a[0] + p.translation.x + js[(5, 0)] + jb[(5, 0)]
+                    let e = kinetic_energy(&q, &v) + potential_energy(&q);
+                    m[(0, 0)] + c[0] + g[0] + a[0] + p.translation.x + js[(5, 0)] + jb[(5, 0)] + e
                 }
             }
         };

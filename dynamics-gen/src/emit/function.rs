@@ -30,6 +30,8 @@ pub struct Arg {
 pub enum Output {
     /// One `rows × cols` matrix (a vector for one column), outputs row-major.
     Matrix,
+    /// One scalar (the first output).
+    Scalar,
     /// One pose: a rotation by rows (9 outputs), then a translation (3), returned as
     /// `Isometry3` through the `isometry` helper of the impl ([`isometry_helper`]).
     Pose,
@@ -182,6 +184,7 @@ impl FunctionBody<'_> {
         // Outputs.
         let value = match self.output {
             Output::Matrix => self.matrix(&bind, self.outputs),
+            Output::Scalar => self.expr(&bind, self.outputs[0]),
             Output::Pose => self.pose(&bind, self.outputs),
             Output::Matrices(count) => {
                 let size = self.rows * self.cols;

@@ -119,7 +119,19 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &[q.clone(), qd.clone(), qdd.clone()],
         1,
     );
-    let forward = body(&dynamics.forward_dynamics, &[q.clone(), qd, tau], 1);
+    let forward = body(&dynamics.forward_dynamics, &[q.clone(), qd.clone(), tau], 1);
+    let kinetic = FunctionBody {
+        graph: &dynamics.graph,
+        args: &[q.clone(), qd],
+        outputs: &[dynamics.kinetic_energy],
+        rows: 1,
+        cols: 1,
+        output: Output::Scalar,
+        scalar: options.scalar,
+        no_std: options.no_std,
+        nalgebra: &nalgebra,
+    }
+    .tokens();
     let kinematics = expand_kinematics(&robot);
     let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &q);
     let names: Vec<&str> = robot.joint_names();
@@ -203,6 +215,14 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
                 #forward
             }
 
+            /// The kinetic energy `K = ½ q̇ᵀ M(q) q̇` (J); on a floating base `q̇ = ν`, the
+            /// base's own motion included.
+            #[inline]
+            #[must_use]
+            pub fn kinetic_energy(&self, q: &#q_ty, qd: &#vec_ty) -> #scalar {
+                #kinetic
+            }
+
             #kinematics_fns
         }
     };
@@ -283,8 +303,18 @@ fn kinematics_functions(
     } else {
         quote!()
     };
+    let p_body = body(&[k.potential_energy], 0, 0, Output::Scalar);
     let mut out = quote! {
         #helper
+
+        /// The potential energy `P(q) = −Σ_i m_i gᵀ p_i` (J) in the gravity field of the
+        /// struct's docs, with `p_i` link i's centre of mass in {0} (height measured from the
+        /// origin of {0}), so that `∂P/∂q = g(q)`; a floating base's own mass included.
+        #[inline]
+        #[must_use]
+        pub fn potential_energy(&self, q: &#q_ty) -> #scalar {
+            #p_body
+        }
 
         /// Forward kinematics `T_{0,n+1}(q)` (Modern Robotics §4.1, `FKinSpace`): the pose of
         /// the end-effector frame in {0} (m).

@@ -33,7 +33,7 @@
 //! Jacobian, so that `V_b = J_b ν` and `V_s = J_s ν` for the whole velocity `ν`.
 
 use super::base::{base_rotation, NQ_BASE, NV_BASE};
-use super::frames::{joint_frames, JointFrames};
+use super::frames::{joint_frames, BodyInertia, JointFrames};
 use super::spatial::{VectorOps, V3};
 use super::{input, joint_motions, Q};
 use crate::expr::{ExprGraph, ExprId};
@@ -64,6 +64,11 @@ pub struct Kinematics {
     pub end_effector: FrameKinematics,
     /// [`Robot::frames`], in order.
     pub frames: Vec<FrameKinematics>,
+    /// `P(q) = −gᵀ Σ_i (m_i p_i + R_i h_i)`: the potential energy, every link's mass `m_i` and
+    /// first moment `h_i = m_i c_i` (in its joint frame, before any regrouping, so that `P`
+    /// itself and not only `∂P/∂q` is the robot's) moved to {0} by the joint frame's pose
+    /// `(R_i, p_i)`; a floating base's own body included.
+    pub potential_energy: ExprId,
 }
 
 /// A pose `(R, p)`.
@@ -188,11 +193,55 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         |frame: &Frame| frame_kinematics(&mut g, robot, &frames, &q, &poses, base, frame, nv);
     let end_effector = one(&robot.end_effector);
     let named = robot.frames.iter().map(&mut one).collect();
+    let potential_energy = potential_energy(&mut g, robot, &frames, &poses, base);
     Kinematics {
         graph: g,
         end_effector,
         frames: named,
+        potential_energy,
     }
+}
+
+/// `P(q)`: see [`Kinematics::potential_energy`]. The first moments are summed in the base
+/// frame, `F = Σ_i (m_i p_i + R_i h_i)`, then moved to {0} once: `F⁰ = m p_b + R_b (F + h_b)`
+/// with `m` the total mass (a fixed base: `F⁰ = F`).
+fn potential_energy(
+    g: &mut ExprGraph,
+    robot: &Robot,
+    frames: &JointFrames,
+    poses: &[Pose],
+    base: Option<Pose>,
+) -> ExprId {
+    let homes = robot.home_poses();
+    let mut total_mass = 0.0;
+    let mut terms: [Vec<ExprId>; 3] = Default::default();
+    for (i, link) in robot.links.iter().enumerate() {
+        // Link i's inertia in its joint frame {J_i}: T_{i,J_i} = M_{0i}⁻¹ T_{0,J_i}.
+        let t_link_joint = trans_inv(&homes[i + 1]) * frames.homes[i];
+        let b = BodyInertia::from_spatial(&link.inertia.transform_by(&t_link_joint));
+        total_mass += b.m;
+        let rh = apply_const(g, &poses[i].r, b.h);
+        for k in 0..3 {
+            terms[k].push(g.cmul(b.m, poses[i].p[k]));
+            terms[k].push(rh[k]);
+        }
+    }
+    let mut moment: V3 = std::array::from_fn(|k| g.sum(&terms[k]));
+    if let Some(b) = base {
+        let own = BodyInertia::from_spatial(&robot.base.inertia);
+        total_mass += own.m;
+        let h = g.const3(own.h);
+        let f = g.add3(moment, h);
+        let rf = apply(g, &b.r, f);
+        let mp: V3 = std::array::from_fn(|k| g.cmul(total_mass, b.p[k]));
+        moment = g.add3(mp, rf);
+    }
+    let gravity = robot.gravity;
+    let terms: Vec<ExprId> = (0..3)
+        .filter(|&k| gravity[k] != 0.0)
+        .map(|k| g.cmul(-gravity[k], moment[k]))
+        .collect();
+    g.sum(&terms)
 }
 
 fn frame_kinematics(

@@ -94,6 +94,9 @@ pub struct Dynamics {
     pub forward_dynamics: Vec<ExprId>,
     /// The algorithm `forward_dynamics` was expanded with.
     pub forward_route: ForwardRoute,
+    /// `K(q, ν) = ½ νᵀ M ν = Σ_i ν_i (½ M_ii ν_i + Σ_{j>i} M_ij ν_j)`, on the mass matrix's
+    /// nodes.
+    pub kinetic_energy: ExprId,
 }
 
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
@@ -225,6 +228,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         ForwardRoute::Ldlt => by_ldlt,
         ForwardRoute::Aba => by_aba,
     };
+    let mut g = g;
+    let kinetic_energy = kinetic_energy(&mut g, &mass_matrix, nv);
     Dynamics {
         graph: g,
         dof: n,
@@ -236,7 +241,24 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         inverse_dynamics,
         forward_dynamics,
         forward_route: route,
+        kinetic_energy,
     }
+}
+
+/// `½ νᵀ M ν` from the nv×nv row-major `m` (see [`Dynamics::kinetic_energy`]).
+fn kinetic_energy(g: &mut ExprGraph, m: &[ExprId], nv: usize) -> ExprId {
+    let v: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
+    let terms: Vec<ExprId> = (0..nv)
+        .map(|i| {
+            let c = g.constant(0.5);
+            let half = g.mul(c, m[i * nv + i]);
+            let mut row = vec![g.mul(half, v[i])];
+            row.extend((i + 1..nv).map(|j| g.mul(m[i * nv + j], v[j])));
+            let inner = g.sum(&row);
+            g.mul(v[i], inner)
+        })
+        .collect();
+    g.sum(&terms)
 }
 
 /// The tolerances (multiples of `ε·m`, see [`crate::expr::zeros`]) tried in turn by
