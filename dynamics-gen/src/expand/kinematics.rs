@@ -126,6 +126,22 @@ fn mul(g: &mut ExprGraph, a: &M3, b: &M3) -> M3 {
     })
 }
 
+/// `A · Rot_z(θ)` (columns `(c a₀ + s a₁, −s a₀ + c a₁, a₂)`), or `A · Rot_z(−θ)` when
+/// `inverse` (columns `(c a₀ − s a₁, s a₀ + c a₁, a₂)`), from `s = sin θ`, `c = cos θ`.
+fn times_rot_z(g: &mut ExprGraph, a: &M3, s: ExprId, c: ExprId, inverse: bool) -> M3 {
+    let (a0, a1) = (column(a, 0), column(a, 1));
+    let ca0 = g.scale3(c, a0);
+    let sa1 = g.scale3(s, a1);
+    let ca1 = g.scale3(c, a1);
+    let sa0 = g.scale3(s, a0);
+    let (col0, col1) = if inverse {
+        (g.sub3(ca0, sa1), g.add3(sa0, ca1))
+    } else {
+        (g.add3(ca0, sa1), g.sub3(ca1, sa0))
+    };
+    std::array::from_fn(|i| [col0[i], col1[i], a[i][2]])
+}
+
 fn rows_of(m: &Matrix4<f64>) -> ([[f64; 3]; 3], [f64; 3]) {
     let r = rotation(m);
     let p = translation(m);
@@ -151,17 +167,7 @@ fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId]) -> Vec<Pos
         let shift = apply_const(g, &parent.r, minus_rt_p);
         let mut p = g.add3(parent.p, shift);
         let r = match f.kind {
-            JointKind::Revolute => {
-                // A · Rot_z(θ): columns (c a₀ + s a₁, −s a₀ + c a₁, a₂).
-                let (a0, a1) = (column(&a, 0), column(&a, 1));
-                let ca0 = g.scale3(m.cos, a0);
-                let sa1 = g.scale3(m.sin, a1);
-                let col0 = g.add3(ca0, sa1);
-                let ca1 = g.scale3(m.cos, a1);
-                let sa0 = g.scale3(m.sin, a0);
-                let col1 = g.sub3(ca1, sa0);
-                std::array::from_fn(|i| [col0[i], col1[i], a[i][2]])
-            }
+            JointKind::Revolute => times_rot_z(g, &a, m.sin, m.cos, false),
             JointKind::Prismatic => {
                 let d = g.scale3(m.q, column(&a, 2));
                 p = g.add3(p, d);
@@ -293,16 +299,7 @@ fn frame_kinematics(
         set(&mut j_b, ov + i, w, v);
         // X · Rot_z(−θ): columns (c a₀ − s a₁, s a₀ + c a₁, a₂); X · Trans_z(−θ): p − θ a₂.
         match m.frame.kind {
-            JointKind::Revolute => {
-                let (a0, a1) = (column(&x.r, 0), column(&x.r, 1));
-                let ca0 = g.scale3(m.cos, a0);
-                let sa1 = g.scale3(m.sin, a1);
-                let col0 = g.sub3(ca0, sa1);
-                let sa0 = g.scale3(m.sin, a0);
-                let ca1 = g.scale3(m.cos, a1);
-                let col1 = g.add3(sa0, ca1);
-                x.r = std::array::from_fn(|r| [col0[r], col1[r], x.r[r][2]]);
-            }
+            JointKind::Revolute => x.r = times_rot_z(g, &x.r, m.sin, m.cos, true),
             JointKind::Prismatic => {
                 let d = g.scale3(m.q, z);
                 x.p = g.sub3(x.p, d);
