@@ -2,6 +2,7 @@
 //! through the path to the end effector's link.
 
 use crate::base::{base_pose, joint_values};
+use crate::coupling::Coupled;
 use dynamics_model::lie::exp6;
 use dynamics_model::Robot;
 use nalgebra::Matrix4;
@@ -14,6 +15,10 @@ use nalgebra::Matrix4;
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn end_effector_pose(robot: &Robot, q: &[f64]) -> Matrix4<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return end_effector_pose(&c.physical, &c.q(q));
+    }
     let t_0b = base_pose(robot, q);
     let t_b = end_effector_pose_in_base(robot, q);
     if robot.base.floating {

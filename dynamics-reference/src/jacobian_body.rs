@@ -2,6 +2,7 @@
 //! `JacobianBody`), on a kinematic tree and a floating base.
 
 use crate::base::{joint_offset, joint_values};
+use crate::coupling::Coupled;
 use crate::end_effector_pose::{end_effector_path, end_effector_pose_in_base};
 use dynamics_model::lie::{adjoint, exp6, trans_inv};
 use dynamics_model::Robot;
@@ -22,6 +23,10 @@ use nalgebra::{DMatrix, Matrix4};
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn jacobian_body(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return c.columns(&jacobian_body(&c.physical, &c.q(q)));
+    }
     let t_b_ee = end_effector_pose_in_base(robot, q);
     let theta = joint_values(robot, q);
     let b_list = robot.body_frame_screws();

@@ -2,6 +2,7 @@
 //! tree and a floating base.
 
 use crate::base::{base_pose, joint_offset, joint_values};
+use crate::coupling::Coupled;
 use crate::end_effector_pose::end_effector_path;
 use dynamics_model::lie::{adjoint, exp6};
 use dynamics_model::Robot;
@@ -22,6 +23,10 @@ use nalgebra::{DMatrix, Matrix4};
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn jacobian_space(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return c.columns(&jacobian_space(&c.physical, &c.q(q)));
+    }
     let t_0b = base_pose(robot, q);
     let theta = joint_values(robot, q);
     let off = joint_offset(robot);
