@@ -176,15 +176,8 @@ fn two_links_turning_at_twice_the_rate() {
             &[w[0], w[1], w[2], v[0], v[1], v[2]],
         );
         let pose = dr::end_effector_pose(&robot, &[x]);
-        check(
-            &what,
-            &pose
-                .fixed_view::<3, 1>(0, 3)
-                .into_owned()
-                .as_slice()
-                .to_vec(),
-            p.as_slice(),
-        );
+        let position = [pose[(0, 3)], pose[(1, 3)], pose[(2, 3)]];
+        check(&what, &position, p.as_slice());
     }
 }
 

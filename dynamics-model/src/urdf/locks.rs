@@ -335,14 +335,12 @@ pub fn mimic_links(
     let resolved = resolve_chains(&written);
     for (k, &f) in movable.iter().enumerate() {
         match &resolved[f] {
-            None => {}
-            Some(Ok(m)) => {
-                // The root leader has no written mimic: an independent movable joint, or a
-                // follower refused above.
-                if mimics[m.leader].is_none() {
-                    out[k] = position(m.leader).map(|leader| Mimic { leader, ..*m });
-                }
+            // The root leader has no written mimic: an independent movable joint, or a
+            // follower refused above (left out).
+            Some(Ok(m)) if mimics[m.leader].is_none() => {
+                out[k] = position(m.leader).map(|leader| Mimic { leader, ..*m });
             }
+            None | Some(Ok(_)) => {}
             Some(Err(cycle)) => {
                 let names: Vec<&str> = cycle.iter().map(|&j| name(j)).collect();
                 errors.push(Invalid::new(
