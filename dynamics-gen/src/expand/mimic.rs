@@ -130,8 +130,11 @@ impl Coupling {
 /// Adds every follower's mimic offset `o_i` to its joint's home offset in `frames`, so that
 /// the joint's angle is `m_i x + (o_i + θ₀)`.
 pub fn offsets(frames: &mut JointFrames, robot: &Robot) {
-    for (frame, coupling) in frames.joints.iter_mut().zip(robot.couplings()) {
-        frame.offset += coupling.offset;
+    let couplings = robot.couplings();
+    for (i, frame) in frames.joints.iter_mut().enumerate() {
+        if robot.joints[i].mimic.is_some() {
+            frame.offset += couplings[i].offset;
+        }
     }
 }
 
