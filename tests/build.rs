@@ -2,7 +2,7 @@
 //! the reference URDFs, and seeded random chains (f64 and f32), all through one build.rs.
 
 use dynamics_gen::{Options, Scalar};
-use dynamics_model::random::{random_chain, random_tree, ChainSpec};
+use dynamics_model::random::{random_chain, random_mimics, random_tree, ChainSpec};
 use dynamics_model::{load, LoadOptions, Robot};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -55,6 +55,18 @@ pub const TREES: &[(u64, usize, bool)] = &[
     (207, 3, true),
     (208, 8, true),
 ];
+
+/// The random trees with mimic joints compiled as Rust: (seed, bodies, floating base); about
+/// 40 % of the joints follow another ([`random_mimics`]).
+pub const MIMIC_TREES: &[(u64, usize, bool)] = &[
+    (301, 5, false),
+    (302, 12, true),
+    (303, 9, false),
+    (304, 16, true),
+];
+
+/// The URDF trees with mimic joints of `data/robots/trees`, with Pinocchio's numbers.
+pub const URDF_MIMIC: &[&str] = &["talos_upper_body_mimic"];
 
 fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
@@ -135,6 +147,34 @@ fn main() {
             robot,
             scalar,
             no_std: k % 4 == 3,
+        });
+    }
+    for (k, &(seed, dof, floating)) in MIMIC_TREES.iter().enumerate() {
+        let robot = with_leaf_frames(random_mimics(
+            random_tree(seed, tree_spec(dof, floating)),
+            seed,
+            0.4,
+        ));
+        assert!(robot.has_mimic(), "tree {seed} has mimic joints");
+        let scalar = if k == 3 { Scalar::F32 } else { Scalar::F64 };
+        cases.push(Case {
+            module: format!("mimic_{seed}_{}", scalar.as_str()),
+            spec: format!("Spec::TreeMimic({seed}, {dof}, {floating})"),
+            robot,
+            scalar,
+            no_std: k == 2,
+        });
+    }
+    for name in URDF_MIMIC {
+        let path = data.join(format!("trees/{name}.urdf"));
+        let robot =
+            dynamics_model::load_file(&path, &LoadOptions::default()).expect("mimic URDF loads");
+        cases.push(Case {
+            module: format!("tree_{name}"),
+            spec: format!("Spec::UrdfMimic({name:?})"),
+            robot,
+            scalar: Scalar::F64,
+            no_std: false,
         });
     }
     // The same robots in f32 and no_std as well.

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Write docs/urdf-compatibility.md: `dynamics-gen joints FILE` on every URDF of
 example-robot-data; for the files that load, once more with `--floating-base`; for the
-refused mimic joints, once more with the locks the error suggests (one round).
+refused mimic joints (impossible couplings), once more with the locks the error suggests
+(one round). Movable mimic joints load as coupled coordinates.
 
     python3 -m venv /tmp/pinvenv && /tmp/pinvenv/bin/pip install example-robot-data
     cargo build --release -p dynamics-gen
@@ -48,6 +49,7 @@ def reason(first_line):
     for key, name in [
         ("field `mimic`", "mimic joint"),
         ("field `inertial.inertia`", "inertia"),
+        ("field `inertia`: the mass matrix is singular", "singular mass matrix"),
         ("no movable joint", "no movable joint"),
         ("has no links", "no links"),
     ]:
@@ -83,17 +85,23 @@ def suggested_locks(stderr):
 
 
 def loaded(out):
-    """`N joints`, `, tree` and `, floating base` of a `joints` listing."""
-    lines = out.splitlines()
-    n = sum(not line.startswith("(floating base)") for line in lines)
+    """The joint coordinates, the mimic joints, whether a tree and whether on a floating base,
+    of a `joints` listing (one line per movable joint; a mimic joint's says whom it follows)."""
+    lines = [line for line in out.splitlines() if not line.startswith("(floating base)")]
+    mimic = sum("  follows `" in line for line in lines)
     tree = any("hangs from" in line for line in lines)
-    floating = any(line.startswith("(floating base)") for line in lines)
-    return n, tree, floating
+    floating = any(line.startswith("(floating base)") for line in out.splitlines())
+    return len(lines) - mimic, mimic, tree, floating
 
 
 def describe(out):
-    n, tree, floating = loaded(out)
-    return f"{n} joints" + (", tree" if tree else "") + (", floating base" if floating else "")
+    n, mimic, tree, floating = loaded(out)
+    return (
+        f"{n} joints"
+        + (f" + {mimic} mimic" if mimic else "")
+        + (", tree" if tree else "")
+        + (", floating base" if floating else "")
+    )
 
 
 def main():
@@ -118,9 +126,10 @@ def main():
         rc, out, err = joints(args.bin, path)
         if rc == 0:
             counts["loads"] += 1
-            _, tree, floating = loaded(out)
+            _, mimic, tree, floating = loaded(out)
             kinds["tree"] += tree
             kinds["floating"] += floating
+            kinds["mimic"] += mimic > 0
             if floating:
                 fb = "floats already (floating root joint)"
             else:
@@ -153,10 +162,14 @@ def main():
     summary = [
         f"- {total} files: {counts['loads']} load, {total - counts['loads']} refused",
         f"  - of those that load: {kinds['tree']} trees, {kinds['floating']} on a floating root "
-        f"joint; {kinds['floats']} of the others also load with `--floating-base`",
+        f"joint; {kinds['floats']} of the others also load with `--floating-base`; "
+        f"{kinds['mimic']} with mimic joints (coupled coordinates)",
     ]
-    names = {"inertia": "physically impossible inertia (field `inertial.inertia`)"}
-    for why in ["mimic joint", "inertia", "no movable joint", "no links", "other"]:
+    names = {
+        "inertia": "physically impossible inertia (field `inertial.inertia`)",
+        "singular mass matrix": "mass matrix singular for every q (joints that move no mass, field `inertia`)",
+    }
+    for why in ["mimic joint", "inertia", "singular mass matrix", "no movable joint", "no links", "other"]:
         if counts[why]:
             extra = ""
             if why == "mimic joint":
@@ -175,7 +188,9 @@ def main():
         f"{version} (its `share/example-robot-data/robots/` directory), made by "
         "`tools/urdf_table.py` (re-run it to refresh this page; no URDF is copied into this repo).",
         "For the files that load, the last column runs it again with `--floating-base`; for the "
-        "mimic joints, with the locks the error suggests (`--lock` of every error line, once).",
+        "refused mimic joints, with the locks the error suggests (`--lock` of every error line, once). "
+        "`N joints + M mimic`: N joint coordinates (the length of q without the base) and M mimic "
+        "joints that follow one of them.",
         "",
         "Kinematic trees (legged robots, humanoids, hands) load whole, in Pinocchio's joint order; "
         "a URDF whose root joint is `floating` (a massless `world` link above the base) loads on a "
@@ -192,9 +207,11 @@ def main():
         "A refusal on `inertial.inertia` is the loader's physical check of each URDF link's "
         "inertia on a moving body (triangle inequality, positive semidefinite, no rotational "
         "inertia without mass), which Pinocchio does not make; on a fixed base the links welded "
-        "to the base are not checked (they never move), with `--floating-base` they are. A free "
-        "movable `<mimic>` joint is refused (coupled coordinates are not modelled yet): locking "
-        "it, or its leader, removes it.",
+        "to the base are not checked (they never move), with `--floating-base` they are. A "
+        "movable `<mimic>` joint is a coupled coordinate (it moves its link as "
+        "`multiplier·q_leader + offset` and has no entry of its own in q); only couplings that "
+        "cannot be one are refused on field `mimic` (a leader the file does not have or that is "
+        "fixed, a cycle, a zero multiplier), and locking the follower removes them.",
         "",
         "| file (in `robots/`) | result | why (first error line, shortened) | with `--floating-base`, or with the suggested locks |",
         "|---|---|---|---|",

@@ -9,7 +9,8 @@
 //!    singular at [`SAMPLES`] seeded random configurations it is singular everywhere (a joint
 //!    that moves no mass or inertia, or two joints that move the same bodies the same way);
 //!    forward dynamics would then divide by zero. The symbolic mass matrix is evaluated at
-//!    those configurations and factorised `M = L D Lᵀ` in joint order; the first joint j
+//!    those configurations and factorised `M = L D Lᵀ` in joint order (with mimic joints, the
+//!    `M = Jᵀ M J` of the independent coordinates); the first joint j
 //!    whose pivot `D_j ≤ PIVOT_TOL · M_jj` (its column depends on the columns before it), or
 //!    whose `M_jj ≤ PIVOT_TOL · max_k M_kk`, at every sample, is named in the error.
 
@@ -32,7 +33,7 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
             robot: robot.name.clone(),
         });
     }
-    let ov = robot.nv() - robot.dof();
+    let ov = robot.nv() - robot.n_coordinates();
     if let Some(k) = singular_joint(robot) {
         let Some(j) = k.checked_sub(ov) else {
             let e = Invalid::new(
@@ -46,9 +47,17 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
             );
             return Err(ModelError::invalid(e).in_file(&robot.source).into());
         };
-        // Link j and every link below it.
-        let moved: Vec<String> = (j..robot.dof())
-            .filter(|&l| robot.path_to(l).contains(&j))
+        // Coordinate j: its joint and the joints that mimic it, and every link below them.
+        let coupling = expand::mimic::Coupling::new(robot);
+        let joints: Vec<usize> = coupling.members(ov + j).map(|i| i - ov).collect();
+        let j = joints
+            .iter()
+            .copied()
+            .find(|&i| robot.joints[i].is_independent())
+            .unwrap_or(j);
+        let followers: Vec<usize> = joints.iter().copied().filter(|&i| i != j).collect();
+        let moved: Vec<String> = (0..robot.dof())
+            .filter(|&l| joints.iter().any(|i| robot.path_to(l).contains(i)))
             .map(|l| format!("`{}`", robot.links[l].name))
             .collect();
         let e = Invalid::new(
@@ -58,7 +67,17 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
             },
             "inertia",
             format!(
-                "the mass matrix is singular for every q: the joint moves no mass or inertia that the joints before it do not already move (the links it moves: {}), so forward dynamics would divide by zero",
+                "the mass matrix is singular for every q: the joint{} moves no mass or inertia that the joints before it do not already move (the links it moves: {}), so forward dynamics would divide by zero",
+                match Some(&followers).filter(|f| !f.is_empty()) {
+                    Some(f) => format!(
+                        ", with the joints that mimic it ({}),",
+                        f.iter()
+                            .map(|&i| format!("`{}`", robot.joints[i].name))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                    None => String::new(),
+                },
                 moved.join(", ")
             ),
             "give the links it moves their mass and inertia (URDF <inertial>, TOML `mass` and `inertia`), or lock the joint (`--lock JOINT=VALUE`, Builder `.lock(..)`, derive `lock(..)`)",
@@ -68,15 +87,21 @@ pub fn check_robot(robot: &Robot) -> Result<(), Error> {
     Ok(())
 }
 
-/// The first dof (base dofs first) whose mass-matrix pivot vanishes at every sample, if any.
+/// The first dof (base dofs first, then the joint coordinates) whose mass-matrix pivot
+/// vanishes at every sample, if any. With mimic joints, `M` is the coordinates' `Jᵀ M J`
+/// ([`expand::mimic`]).
 fn singular_joint(robot: &Robot) -> Option<usize> {
-    let n = robot.dof();
-    let oq = robot.nq() - n;
-    let frames = frames::joint_frames(robot);
+    let k = robot.n_coordinates();
+    let oq = robot.nq() - k;
+    let mut frames = frames::joint_frames(robot);
+    let coupling = expand::mimic::Coupling::new(robot);
+    expand::mimic::offsets(&mut frames, robot);
     let mut g = ExprGraph::new();
-    let q: Vec<_> = (0..n).map(|i| g.input(expand::input(Q, oq + i))).collect();
+    let x: Vec<_> = (0..k).map(|i| g.input(expand::input(Q, oq + i))).collect();
+    let q = coupling.positions(&mut g, &x);
     let motions = expand::joint_motions(&mut g, &frames, &q);
     let m = expand::crba::crba(&mut g, &motions, frames.base.as_ref());
+    let m = coupling.matrix(&mut g, &m);
     let nv = robot.nv();
     let mut first_singular = vec![None; SAMPLES];
     let mut rng = crate::expr::zeros::SplitMix(0x9e37_79b9_7f4a_7c15);
@@ -84,6 +109,7 @@ fn singular_joint(robot: &Robot) -> Option<usize> {
         let values: Vec<f64> = robot
             .joints
             .iter()
+            .filter(|j| j.is_independent())
             .map(|j| match j.kind {
                 JointKind::Revolute => rng.uniform(-std::f64::consts::PI, std::f64::consts::PI),
                 JointKind::Prismatic => rng.uniform(-0.5, 0.5),
@@ -127,6 +153,38 @@ fn first_zero_pivot(m: &[f64], n: usize) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::first_zero_pivot;
+
+    /// A leader whose link and whose follower's link carry no mass: its coordinate moves
+    /// nothing, and the error names the leader and both links.
+    #[test]
+    fn a_massless_coupled_pair_is_named() {
+        use dynamics_model::lie::rp_to_trans;
+        use dynamics_model::{Mimic, Robot};
+        use nalgebra::{Matrix3, Matrix4, Matrix6, Vector3, Vector6};
+        let at = |x: f64| rp_to_trans(&Matrix3::identity(), &Vector3::new(x, 0.0, 0.0));
+        let heavy = Matrix6::from_diagonal(&Vector6::new(0.1, 0.1, 0.1, 1.0, 1.0, 1.0));
+        let z = Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+        let mut robot = Robot::from_mr_lists(
+            &[at(0.5), at(0.5), at(0.5), Matrix4::identity()],
+            &[heavy, Matrix6::zeros(), Matrix6::zeros()],
+            &[z, z, z],
+            Vector3::new(0.0, 0.0, -9.81),
+        )
+        .unwrap();
+        robot.links[2].parent = Some(0);
+        robot.joints[2].mimic = Some(Mimic {
+            leader: 1,
+            multiplier: -1.0,
+            offset: 0.0,
+        });
+        let e = super::check_robot(&robot).unwrap_err().to_string();
+        assert!(
+            e.contains("joint `joint2`")
+                && e.contains("mimic it (`joint3`)")
+                && e.contains("`link2`, `link3`"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn pivots() {

@@ -148,11 +148,18 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
     // branches), not zeros that happen to fold.
     let robot = &generated.robot;
     let off = nv - d.dof;
+    // The joints behind each joint coordinate (with mimic joints: a leader and its followers).
+    let coupling = crate::expand::mimic::Coupling::new(robot);
+    let joints: Vec<Vec<usize>> = (off..nv)
+        .map(|r| coupling.members(r).map(|i| i - off).collect())
+        .collect();
+    let on_path = |a: usize, b: usize| {
+        joints[a]
+            .iter()
+            .any(|&i| joints[b].iter().any(|&j| robot.path_to(i).contains(&j)))
+    };
     let related = |i: usize, j: usize| {
-        i < off
-            || j < off
-            || robot.path_to(i - off).contains(&(j - off))
-            || robot.path_to(j - off).contains(&(i - off))
+        i < off || j < off || on_path(i - off, j - off) || on_path(j - off, i - off)
     };
     let zeros = (0..nv * nv).filter(|&k| !related(k / nv, k % nv)).count();
     let sparsity = (zeros > 0).then(|| {

@@ -443,3 +443,52 @@ fn generate_from_standard_input_records_the_hash_of_what_it_read() {
     let body = |s: &str| s[s.find("#[allow(").unwrap()..].to_string();
     assert_eq!(body(&piped), body(&from_file));
 }
+
+/// The TALOS upper body with its grippers coupled (`tools/mimic_reference.py`): `joints`
+/// gives the coordinates their index and says whom each follower follows; `eval` takes the 20
+/// coordinates, names the mimic joints when a vector has the 32 physical joints' length, and
+/// agrees with Pinocchio's first sample.
+#[test]
+fn mimic_joints_in_joints_and_eval() {
+    let urdf = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/robots/trees/talos_upper_body_mimic.urdf"
+    );
+    let out = run(&["joints", urdf]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert_eq!(stdout.lines().count(), 32);
+    let line = |name: &str| {
+        stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("no {name}: {stdout}"))
+            .to_string()
+    };
+    assert!(line("gripper_left_joint").contains(" q[9] "), "{stdout}");
+    let follower = line("gripper_left_fingertip_1_joint");
+    assert!(
+        follower.contains(" - ") && follower.contains("follows `gripper_left_joint` (×-1 + 0)"),
+        "{follower}"
+    );
+    assert!(line("head_2_joint").contains(" q[19] "), "{stdout}");
+
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/reference/trees/talos_upper_body_mimic.json"
+    );
+    let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let s = &data["samples"][0];
+    let input = serde_json::json!({"q": s["q"], "qd": s["v"], "qdd": s["a"]}).to_string();
+    let out = run_with_stdin(&["eval", urdf], &format!("{input}\n"));
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let o: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
+    assert_close("τ", &floats(&o["inverse_dynamics"]), &floats(&s["tau"]));
+    let long = serde_json::json!({ "q": vec![0.0; 32] }).to_string();
+    let out = run_with_stdin(&["eval", urdf], &format!("{long}\n"));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains(r#""q" has 32 values, the robot has 20 joints; its 12 mimic joints follow their leaders"#),
+        "{err}"
+    );
+}

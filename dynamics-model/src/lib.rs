@@ -26,13 +26,30 @@
 //! - The dynamics are `τ = M(q) q̈ + c(q, q̇) + g(q) + J_b(q)ᵀ F_tip`, where `F_tip` is the
 //!   wrench the end effector applies to the environment, in {n+1}.
 //!
+//! ## Mimic joints
+//!
+//! A joint with [`Joint::mimic`] follows another joint, its leader: `θ_f = m·θ_L + o`
+//! (URDF `<mimic>`, TOML `mimic = { joint, multiplier, offset }`). It keeps its link, which it
+//! moves, but it is not a coordinate: the vectors q, ν, ν̇ and τ hold the *independent* joints
+//! only, the joints without `mimic`, in the order of [`Robot::joints`]. Hence the counts
+//! (see [`mimic`]):
+//!
+//! - [`Robot::dof`] = n, the physical joints (one per link), followers included;
+//! - [`Robot::n_coordinates`] = k, the independent joints ([`Robot::joint_names`] lists them);
+//! - [`Robot::nq`] = k (+ 7 on a floating base), [`Robot::nv`] = k (+ 6).
+//!
+//! Without mimic joints k = n. The dynamics in the coordinates are the physical ones
+//! projected by the constant coupling matrix J: `M = Jᵀ M_joints J`, `τ = Jᵀ τ_joints`, so the
+//! leader's τ is the force that drives it and all its followers.
+//!
 //! ## Floating base
 //!
 //! With [`Base::floating`], a free 6-DoF joint connects the world frame {0} to the base,
-//! whose frame coincides with {0} at the home configuration. Then (nq = n + 7, nv = n + 6):
+//! whose frame coincides with {0} at the home configuration. Then (nq = k + 7, nv = k + 6,
+//! k = n without mimic joints):
 //!
 //! - `q = (p, quat, θ)`: `p` the base origin in {0} (m); `quat = (x, y, z, w)`, scalar
-//!   last, the base orientation `R` (base-frame vectors into {0}); `θ` the n joint values.
+//!   last, the base orientation `R` (base-frame vectors into {0}); `θ` the k joint values.
 //!   Code that reads `quat` normalises it (`R` is computed from `quat / |quat|`).
 //! - `ν = (ω_b, v_b, θ̇)`: the base's body twist in the base frame, angular first
 //!   (`[ω_b] = Rᵀ Ṙ`, `v_b = Rᵀ ṗ`), then the joint rates; `ν̇` likewise.
@@ -54,12 +71,14 @@
 pub mod error;
 pub mod inertia;
 pub mod lie;
+pub mod mimic;
 pub mod random;
 pub mod robot;
 pub mod validate;
 
 pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
+pub use mimic::{Coupling, Mimic};
 pub use robot::{
     Base, EndEffector, Frame, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
 };

@@ -244,9 +244,59 @@ pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
     }
 }
 
+/// `robot` with some joints coupled as mimic joints ([`crate::mimic`]), drawn from `seed`
+/// apart from the robot's own draws: each joint becomes a follower with probability
+/// `probability` (at least one joint stays independent), of a leader drawn among the
+/// independent joints (before or after it), with a multiplier of magnitude in [0.5, 2) and
+/// random sign and an offset in [−0.5, 0.5). The name gets `_mimic`.
+pub fn random_mimics(mut robot: Robot, seed: u64, probability: f64) -> Robot {
+    let mut rng = Rng::new(seed ^ 0x313C_C0DE);
+    let n = robot.joints.len();
+    let mut follows: Vec<bool> = (0..n).map(|_| rng.unit() < probability).collect();
+    if n > 0 && follows.iter().all(|&f| f) {
+        let keep = rng.range(0, n - 1);
+        follows[keep] = false;
+    }
+    let independent: Vec<usize> = (0..n).filter(|&i| !follows[i]).collect();
+    for i in (0..n).filter(|&i| follows[i]) {
+        let leader = independent[rng.range(0, independent.len() - 1)];
+        let magnitude = rng.uniform(0.5, 2.0);
+        let multiplier = if rng.unit() < 0.5 {
+            -magnitude
+        } else {
+            magnitude
+        };
+        robot.joints[i].mimic = Some(crate::mimic::Mimic {
+            leader,
+            multiplier,
+            offset: rng.uniform(-0.5, 0.5),
+        });
+    }
+    robot.name.push_str("_mimic");
+    robot
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn random_mimics_are_valid_and_keep_a_coordinate() {
+        let mut coupled = 0;
+        for seed in 0..30 {
+            let spec = TreeSpec {
+                dof: 1 + (seed as usize % 10),
+                prismatic: 0.3,
+                branching: 0.4,
+                floating: seed % 2 == 0,
+            };
+            let r = random_mimics(random_tree(seed, spec), seed, 0.4);
+            assert!(r.validate().is_ok(), "seed {seed}: {:?}", r.validate());
+            assert!(r.n_coordinates() >= 1);
+            coupled += r.dof() - r.n_coordinates();
+        }
+        assert!(coupled > 20, "{coupled} followers");
+    }
 
     #[test]
     fn random_trees_are_valid_reproducible_and_branched() {

@@ -4,6 +4,7 @@
 use crate::error::ModelError;
 use crate::inertia::SpatialInertia;
 use crate::lie::{adjoint, trans_inv};
+use crate::mimic::Mimic;
 use nalgebra::{Matrix4, Matrix6, Vector3, Vector6};
 
 /// The standard gravity vector used when a description gives none: `(0, 0, −9.81)` m/s² in {0}.
@@ -60,6 +61,9 @@ pub struct Joint {
     pub rotor_inertia: f64,
     /// Gear ratio (motor turns per joint turn); kept for later, not in the dynamics yet.
     pub gear_ratio: f64,
+    /// `Some` for a mimic joint, which follows an independent joint and is not one of the
+    /// coordinates of q, ν, ν̇, τ (see [`crate::mimic`]); `None` for an independent joint.
+    pub mimic: Option<Mimic>,
 }
 
 impl Joint {
@@ -74,6 +78,7 @@ impl Joint {
             friction: 0.0,
             rotor_inertia: 0.0,
             gear_ratio: 1.0,
+            mimic: None,
         }
     }
 }
@@ -230,21 +235,23 @@ impl Robot {
         })
     }
 
-    /// n, the number of movable joints (the floating base not counted).
+    /// n, the number of movable joints (the floating base not counted), mimic joints
+    /// included: the physical joints, one per moving link.
     pub fn dof(&self) -> usize {
         self.joints.len()
     }
 
-    /// The length of the configuration vector q: n, or n + 7 on a floating base
-    /// (position, unit quaternion, joint values).
+    /// The length of the configuration vector q: k, or k + 7 on a floating base
+    /// (position, unit quaternion, joint values), with k = [`Robot::n_coordinates`] the
+    /// independent joints (n when no joint mimics another).
     pub fn nq(&self) -> usize {
-        self.dof() + if self.base.floating { 7 } else { 0 }
+        self.n_coordinates() + if self.base.floating { 7 } else { 0 }
     }
 
-    /// The length of the velocity vector ν (and of ν̇ and τ): n, or n + 6 on a floating base
-    /// (the base's body twist, then the joint rates).
+    /// The length of the velocity vector ν (and of ν̇ and τ): k, or k + 6 on a floating base
+    /// (the base's body twist, then the joint rates), with k = [`Robot::n_coordinates`].
     pub fn nv(&self) -> usize {
-        self.dof() + if self.base.floating { 6 } else { 0 }
+        self.n_coordinates() + if self.base.floating { 6 } else { 0 }
     }
 
     /// `λ(i)` for every link: its parent link, `None` for the base.
@@ -341,9 +348,14 @@ impl Robot {
         frame.parent.map_or(Vec::new(), |p| self.path_to(p))
     }
 
-    /// The names of the movable joints, in the order of every vector.
+    /// The names of the independent joints, in the order of every vector (mimic joints are
+    /// not coordinates; all names are in [`Robot::joints`]).
     pub fn joint_names(&self) -> Vec<&str> {
-        self.joints.iter().map(|j| j.name.as_str()).collect()
+        self.joints
+            .iter()
+            .filter(|j| j.is_independent())
+            .map(|j| j.name.as_str())
+            .collect()
     }
 
     /// Checks the robot against every rule of [`crate::validate`]; see there.

@@ -12,6 +12,8 @@
 //! | a massless link has no rotational inertia | [`INERTIA_TOL`] · scale |
 //! | rotational inertia about the COM positive semidefinite | [`INERTIA_TOL`] · scale |
 //! | principal moments meet the triangle inequality `I₁ + I₂ ≥ I₃` | [`INERTIA_TOL`] · scale |
+//! | mimic: the leader is another joint of the robot and independent (chains resolved, see [`crate::mimic`]) | exact |
+//! | mimic: multiplier finite and non-zero, offset finite | exact |
 //!
 //! "scale" is the largest absolute entry of the matrix checked (at least 1e-300). Thin rods
 //! (`diag(4, 4, 0)`, the Exercise 8.4 pendulum) meet the triangle inequality with equality
@@ -92,6 +94,7 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             }
         }
     }
+    errors.extend(check_mimics(robot));
     for (i, l) in robot.links.iter().enumerate() {
         let subject = Subject::Link {
             index: Some(i),
@@ -151,6 +154,75 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             "inertia",
             &robot.base.inertia.0,
         ));
+    }
+    errors
+}
+
+/// Checks every joint's [`crate::Mimic`] (see the module table).
+pub fn check_mimics(robot: &Robot) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    let n = robot.joints.len();
+    for (i, j) in robot.joints.iter().enumerate() {
+        let Some(m) = &j.mimic else { continue };
+        let err = |problem: String, fix: String| {
+            Invalid::new(
+                Subject::Joint {
+                    index: Some(i),
+                    name: j.name.clone(),
+                },
+                "mimic",
+                problem,
+                fix,
+            )
+        };
+        let independent: Vec<String> = robot
+            .joints
+            .iter()
+            .enumerate()
+            .filter(|&(k, l)| k != i && l.is_independent())
+            .map(|(_, l)| format!("`{}`", l.name))
+            .collect();
+        let leaders = format!(
+            "make it follow an independent joint: {}",
+            independent.join(", ")
+        );
+        if m.leader >= n {
+            errors.push(err(
+                format!(
+                    "the leader is joint {} but the robot has {n} joints",
+                    m.leader + 1
+                ),
+                leaders,
+            ));
+        } else if m.leader == i {
+            errors.push(err("the joint follows itself".into(), leaders));
+        } else if let Some(up) = &robot.joints[m.leader].mimic {
+            let leader = &robot.joints[m.leader];
+            let root = robot.joints.get(up.leader).map_or("?", |l| l.name.as_str());
+            errors.push(err(
+                format!(
+                    "the leader `{}` is itself a mimic joint (it follows `{root}`): a leader must be an independent joint",
+                    leader.name
+                ),
+                format!(
+                    "follow `{root}` directly, with multiplier {} and offset {} (the chain composed)",
+                    m.multiplier * up.multiplier,
+                    m.multiplier * up.offset + m.offset
+                ),
+            ));
+        }
+        if !(m.multiplier.is_finite() && m.multiplier != 0.0) {
+            errors.push(err(
+                format!("the multiplier is {}: it must be finite and non-zero", m.multiplier),
+                "give a finite, non-zero multiplier (θ = multiplier·θ_leader + offset), or lock the joint instead of coupling it".into(),
+            ));
+        }
+        if !m.offset.is_finite() {
+            errors.push(err(
+                format!("the offset {} is not finite", m.offset),
+                "give a finite offset (rad or m)".into(),
+            ));
+        }
     }
     errors
 }

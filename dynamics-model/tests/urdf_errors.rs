@@ -87,29 +87,97 @@ fn floating_and_planar_joints() {
 }
 
 #[test]
-fn movable_mimic_joint_is_refused_fixed_one_is_fine() {
+fn movable_mimic_joint_is_coupled_fixed_one_is_fine() {
     let mimic = r#"<mimic joint="j1" multiplier="1" offset="0"/>"#;
     let joints = joint("j1", "revolute", "a", "b", "") + &joint("j2", "prismatic", "b", "c", mimic);
-    let m = error_of(&robot(&["a", "b", "c"], &joints), "mimic.urdf", &default());
-    assert_mentions(
-        &m,
-        &["mimic.urdf: ", "joint `j2`", "field `mimic`", "--lock j2="],
-    );
+    let r = load_text(&robot(&["a", "b", "c"], &joints), "mimic.urdf", &default())
+        .expect("a coupled joint");
+    assert_eq!(r.joint_names(), ["j1"]);
+    assert_eq!((r.dof(), r.nq(), r.nv()), (2, 1, 1));
+    assert_eq!(r.joints[1].mimic.map(|m| m.leader), Some(0));
 
-    // The same joint fixed (as in panda.urdf) or locked loads, with one joint.
+    // The same joint fixed (as in panda.urdf) loads, with one joint.
     let fixed = joint("j1", "revolute", "a", "b", "") + &joint("j2", "fixed", "b", "c", mimic);
     let r =
         load_text(&robot(&["a", "b", "c"], &fixed), "mimic.urdf", &default()).expect("fixed mimic");
     assert_eq!(r.joint_names(), ["j1"]);
+    assert_eq!(r.dof(), 1);
+    // Locked alone, while its leader moves, it is refused: the lock to give is the leader's.
     let locked = LoadOptions {
         lock: vec![("j2".into(), 0.0)],
         ..default()
     };
-    let r =
-        load_text(&robot(&["a", "b", "c"], &joints), "mimic.urdf", &locked).expect("locked mimic");
-    assert_eq!(r.joint_names(), ["j1"]);
-    // Both bodies welded: 2 kg.
-    assert_eq!(r.links[0].inertia.mass(), 2.0);
+    let m = error_of(&robot(&["a", "b", "c"], &joints), "mimic.urdf", &locked);
+    assert_mentions(
+        &m,
+        &[
+            "mimic.urdf: ",
+            "joint `j2`",
+            "field `lock`",
+            "mimics `j1`",
+            "--lock j1=0",
+        ],
+    );
+    // Locking the leader welds both bodies: 2 kg.
+    let locked = LoadOptions {
+        lock: vec![("j1".into(), 0.0)],
+        ..default()
+    };
+    let m = error_of(&robot(&["a", "b", "c"], &joints), "mimic.urdf", &locked);
+    assert_mentions(&m, &["no movable joint"]);
+}
+
+/// A follower's `<mimic>` that cannot be a coupling: a leader the file does not have, a fixed
+/// leader, a cycle, a zero multiplier. Each error names the joint, the field `mimic` and the
+/// lock that would do instead.
+#[test]
+fn impossible_mimics_are_refused_by_name() {
+    let base = joint("j1", "revolute", "a", "b", "");
+    let cases = [
+        (
+            joint("j2", "revolute", "b", "c", r#"<mimic joint="nope"/>"#),
+            "which the file does not have",
+        ),
+        (
+            joint("j2", "revolute", "b", "c", r#"<mimic joint="fx"/>"#)
+                + &joint("fx", "fixed", "c", "d", ""),
+            "which is fixed",
+        ),
+        (
+            joint("j2", "revolute", "b", "c", r#"<mimic joint="j3"/>"#)
+                + &joint("j3", "revolute", "c", "d", r#"<mimic joint="j2"/>"#),
+            "cycle (j2 → j3 → j2)",
+        ),
+        (
+            joint(
+                "j2",
+                "revolute",
+                "b",
+                "c",
+                r#"<mimic joint="j1" multiplier="0"/>"#,
+            ),
+            "multiplier 0",
+        ),
+    ];
+    for (extra, problem) in cases {
+        let links: &[&str] = if extra.contains("\"d\"") {
+            &["a", "b", "c", "d"]
+        } else {
+            &["a", "b", "c"]
+        };
+        let text = robot(links, &(base.clone() + &extra));
+        let m = error_of(&text, "mimic.urdf", &default());
+        assert_mentions(
+            &m,
+            &[
+                "mimic.urdf: ",
+                "joint `j2`",
+                "field `mimic`",
+                problem,
+                "--lock j2=",
+            ],
+        );
+    }
 }
 
 #[test]

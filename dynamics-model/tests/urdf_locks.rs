@@ -1,9 +1,10 @@
 //! Locks: joints frozen at a value (branches of a tree merged into their parent body), mimic
-//! joints following a locked leader, and lock values checked against the joint's limits.
+//! joints following a locked leader (or coupled to a free one), and lock values checked
+//! against the joint's limits.
 
 mod urdf_common;
 
-use dynamics_model::LoadOptions;
+use dynamics_model::{LoadOptions, Mimic};
 use urdf_common::*;
 
 const INERTIAL: &str = r#"<inertial><origin xyz="0 0 0.1"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#;
@@ -88,23 +89,11 @@ fn tiago_like() -> String {
 }
 
 #[test]
-fn a_tree_loads_whole_and_a_free_mimic_finger_is_refused_with_its_lock() {
+fn a_tree_loads_whole_with_a_coupled_mimic_finger() {
     let text = tiago_like();
-    let m = error_of(&text, "tiago.urdf", &LoadOptions::default());
-    // Only the follower is refused; its limits exclude 0, so the suggestion is the nearest one.
-    assert_eq!(m.lines().count(), 1, "{m}");
-    for part in [
-        "tiago.urdf: ",
-        "joint `finger_2`",
-        "field `mimic`",
-        "`--lock finger_2=0.01`",
-        "lock `finger_1`",
-    ] {
-        assert!(m.contains(part), "lacks {part:?}: {m}");
-    }
-    let r = load_text(&text, "tiago.urdf", &suggested(&m)).expect("the suggested lock");
+    let r = load_text(&text, "tiago.urdf", &LoadOptions::default()).expect("a coupled finger");
     // Depth first, children by joint name: base → torso, wheel_l, wheel_r; torso_link →
-    // arm_1, head_1; gripper → finger_1.
+    // arm_1, head_1; gripper → finger_1, finger_2. finger_2 follows finger_1: no coordinate.
     assert_eq!(
         r.joint_names(),
         [
@@ -112,20 +101,31 @@ fn a_tree_loads_whole_and_a_free_mimic_finger_is_refused_with_its_lock() {
             "wheel_r"
         ]
     );
+    assert_eq!((r.dof(), r.nq()), (10, 9));
+    assert_eq!(r.joints[5].name, "finger_2");
     assert_eq!(
-        r.parents(),
-        [
-            None,
-            Some(0),
-            Some(1),
-            Some(2),
-            Some(3),
-            Some(0),
-            Some(5),
-            None,
-            None
-        ]
+        r.joints[5].mimic,
+        Some(Mimic {
+            leader: 4,
+            multiplier: 1.0,
+            offset: 0.0
+        })
     );
+    assert_eq!(r.links[5].parent, Some(3));
+    // Locking the follower alone is refused with the leader's lock; the suggestion loads.
+    let m = error_of(&text, "tiago.urdf", &locks(&[("finger_2", 0.02)]));
+    assert_eq!(m.lines().count(), 1, "{m}");
+    for part in [
+        "tiago.urdf: ",
+        "joint `finger_2`",
+        "field `lock`",
+        "mimics `finger_1`",
+        "`--lock finger_1=0.02`",
+    ] {
+        assert!(m.contains(part), "lacks {part:?}: {m}");
+    }
+    let r = load_text(&text, "tiago.urdf", &suggested(&m)).expect("the suggested lock");
+    assert_eq!(r.dof(), 8);
     // Locking the leader locks the follower with it; locking the wheels leaves one branch
     // fewer at the base.
     let r = load_text(
@@ -138,11 +138,12 @@ fn a_tree_loads_whole_and_a_free_mimic_finger_is_refused_with_its_lock() {
         r.joint_names(),
         ["torso", "arm_1", "arm_2", "arm_3", "head_1", "head_2"]
     );
+    assert_eq!(r.dof(), 6);
     assert_eq!(r.end_effector.name, "h2");
 }
 
 #[test]
-fn a_mimic_follower_in_its_own_branch_is_refused_until_it_or_its_leader_is_locked() {
+fn a_mimic_follower_in_its_own_branch_is_coupled_or_locked_with_its_leader() {
     let text = robot(&[
         ("a1", "revolute", "base", "a", ""),
         ("lead", "revolute", "base", "l", ""),
@@ -154,14 +155,24 @@ fn a_mimic_follower_in_its_own_branch_is_refused_until_it_or_its_leader_is_locke
             r#"<mimic joint="lead" multiplier="-1"/>"#,
         ),
     ]);
-    let m = error_of(&text, "m.urdf", &LoadOptions::default());
+    let r = load_text(&text, "m.urdf", &LoadOptions::default()).expect("coupled");
+    assert_eq!(r.joint_names(), ["a1", "lead"]);
+    // Children by joint name: a1, follow, lead; the follower comes before its leader.
+    assert_eq!(r.joints[1].name, "follow");
+    assert_eq!(
+        r.joints[1].mimic.map(|m| (m.leader, m.multiplier)),
+        Some((2, -1.0))
+    );
+    // θ_follow = −θ_lead: locking it at 0.5 alone means locking the leader at −0.5.
+    let m = error_of(&text, "m.urdf", &locks(&[("follow", 0.5)]));
     assert!(
-        m.contains("--lock follow=0") && m.contains("joint `follow`"),
+        m.contains("--lock lead=-0.5") && m.contains("joint `follow`"),
         "{m}"
     );
-    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("follower locked");
-    assert_eq!(r.joint_names(), ["a1", "lead"]);
-    let r = load_text(&text, "m.urdf", &locks(&[("lead", 0.5)])).expect("leader locked");
+    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("leader locked");
+    assert_eq!(r.joint_names(), ["a1"]);
+    let r = load_text(&text, "m.urdf", &locks(&[("lead", -0.5), ("follow", 0.5)]))
+        .expect("both, consistent");
     assert_eq!(r.joint_names(), ["a1"]);
 }
 
@@ -179,12 +190,20 @@ fn locking_a_mimic_leader_locks_its_followers() {
         ),
         ("f2", "prismatic", "c", "d", r#"<mimic joint="f1"/>"#),
     ]);
-    // Without locks the followers are refused (they are not independent joints).
-    let m = error_of(&text, "m.urdf", &LoadOptions::default());
-    assert!(
-        m.contains("joint `f1`: field `mimic`") && m.contains("lock `lead`"),
-        "{m}"
-    );
+    // Without locks the followers are coupled, f2 through f1 to the root leader:
+    // θ_f2 = θ_f1 = 2 θ_lead + 0.1.
+    let r = load_text(&text, "m.urdf", &LoadOptions::default()).expect("coupled");
+    assert_eq!(r.joint_names(), ["j1", "lead"]);
+    for f in [2, 3] {
+        assert_eq!(
+            r.joints[f].mimic,
+            Some(Mimic {
+                leader: 1,
+                multiplier: 2.0,
+                offset: 0.1
+            })
+        );
+    }
     let by_leader = load_text(&text, "m.urdf", &locks(&[("lead", 0.3)])).expect("leader");
     let explicit = load_text(
         &text,
@@ -207,9 +226,20 @@ fn locking_a_mimic_leader_locks_its_followers() {
     ] {
         assert!(m.contains(part), "lacks {part:?}: {m}");
     }
-    // A follower locked on its own, its leader free, is still allowed.
-    let r = load_text(&text, "m.urdf", &locks(&[("f1", 0.0), ("f2", 0.0)])).expect("followers");
-    assert_eq!(r.joint_names(), ["j1", "lead"]);
+    // A follower locked on its own, its leader free, is refused (it would break the
+    // coupling); the error gives the root leader's lock, up the chain: f2 = 0.5 needs
+    // lead = (0.5 − 0.1)/2 = 0.2.
+    let m = error_of(&text, "m.urdf", &locks(&[("f2", 0.5)]));
+    for part in [
+        "joint `f2`",
+        "field `lock`",
+        "mimics `f1`",
+        "--lock lead=0.2",
+    ] {
+        assert!(m.contains(part), "lacks {part:?}: {m}");
+    }
+    let r = load_text(&text, "m.urdf", &suggested(&m)).expect("the suggested lock");
+    assert_eq!(r.joint_names(), ["j1"]);
 }
 
 #[test]

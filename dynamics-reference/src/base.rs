@@ -52,12 +52,12 @@ pub fn base_pose(robot: &Robot, q: &[f64]) -> Matrix4<f64> {
 
 /// The joint values θ: `q` without the base's seven entries.
 pub(crate) fn joint_values<'a>(robot: &Robot, q: &'a [f64]) -> &'a [f64] {
-    &q[robot.nq() - robot.dof()..]
+    &q[robot.nq() - robot.n_coordinates()..]
 }
 
 /// The joint entries of a velocity-like vector (ν, ν̇, τ): without the base's six entries.
 pub(crate) fn joint_part<'a>(robot: &Robot, x: &'a [f64]) -> &'a [f64] {
-    &x[robot.nv() - robot.dof()..]
+    &x[robot.nv() - robot.n_coordinates()..]
 }
 
 /// The base's six entries of a velocity-like vector (angular first); zero for a fixed base.
@@ -71,5 +71,5 @@ pub(crate) fn base_part(robot: &Robot, x: &[f64]) -> Vector6<f64> {
 
 /// The offset of joint 0 in ν: 6 on a floating base, 0 on a fixed one.
 pub(crate) fn joint_offset(robot: &Robot) -> usize {
-    robot.nv() - robot.dof()
+    robot.nv() - robot.n_coordinates()
 }

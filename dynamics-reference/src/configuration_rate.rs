@@ -35,6 +35,8 @@ pub fn configuration_rate(robot: &Robot, q: &[f64], qd: &[f64]) -> DVector<f64> 
     q_dot.rows_mut(0, 3).copy_from(&p_dot);
     q_dot.rows_mut(3, 3).copy_from(&u_dot);
     q_dot[6] = w_dot;
-    q_dot.rows_mut(7, robot.dof()).copy_from_slice(&qd[6..]);
+    q_dot
+        .rows_mut(7, robot.n_coordinates())
+        .copy_from_slice(&qd[6..]);
     q_dot
 }

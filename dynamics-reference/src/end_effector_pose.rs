@@ -2,6 +2,7 @@
 //! end-effector frame or a named frame, through the path to its link.
 
 use crate::base::{base_pose, joint_values};
+use crate::coupling::Coupled;
 use dynamics_model::lie::exp6;
 use dynamics_model::{Frame, Robot};
 use nalgebra::Matrix4;
@@ -22,6 +23,10 @@ pub fn end_effector_pose(robot: &Robot, q: &[f64]) -> Matrix4<f64> {
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn frame_pose(robot: &Robot, frame: &Frame, q: &[f64]) -> Matrix4<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return frame_pose(&c.physical, frame, &c.q(q));
+    }
     let t_b = frame_pose_in_base(robot, frame, q);
     if robot.base.floating {
         base_pose(robot, q) * t_b

@@ -2,6 +2,7 @@
 //! on a kinematic tree.
 
 use crate::base::{base_pose, joint_values};
+use crate::coupling::Coupled;
 use dynamics_model::lie::{adjoint, exp6, trans_inv};
 use dynamics_model::Robot;
 use nalgebra::{Matrix4, Matrix6, Vector6};
@@ -41,6 +42,10 @@ impl TreeFrames {
     /// # Panics
     /// If `q.len()` is not `robot.nq()`.
     pub fn new(robot: &Robot, q: &[f64]) -> Self {
+        if let Some(c) = Coupled::of(robot) {
+            crate::check::configuration(robot, "q", q);
+            return Self::new(&c.physical, &c.q(q));
+        }
         let base_pose = base_pose(robot, q);
         let theta = joint_values(robot, q);
         let n = robot.dof();

@@ -3,6 +3,7 @@
 
 use crate::base::{base_part, joint_offset, joint_part};
 use crate::check;
+use crate::coupling::Coupled;
 use crate::frames::TreeFrames;
 use dynamics_model::lie::{ad, rotation, twist};
 use dynamics_model::Robot;
@@ -47,6 +48,11 @@ pub fn inverse_dynamics(
 ) -> DVector<f64> {
     check::velocity(robot, "qd", qd);
     check::velocity(robot, "qdd", qdd);
+    if let Some(c) = Coupled::of(robot) {
+        check::configuration(robot, "q", q);
+        let tau = inverse_dynamics(&c.physical, &c.q(q), &c.v(qd), &c.v(qdd), gravity, f_tip);
+        return c.forces(&tau);
+    }
     let n = robot.dof();
     let frames = TreeFrames::new(robot, q);
     let a = &frames.a;

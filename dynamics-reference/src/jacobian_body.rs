@@ -2,6 +2,7 @@
 //! end-effector frame {n+1} or a named frame, on a kinematic tree and a floating base.
 
 use crate::base::{joint_offset, joint_values};
+use crate::coupling::Coupled;
 use crate::end_effector_pose::frame_pose_in_base;
 use dynamics_model::lie::{adjoint, exp6, trans_inv};
 use dynamics_model::{Frame, Robot};
@@ -30,6 +31,10 @@ pub fn jacobian_body(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn frame_jacobian_body(robot: &Robot, frame: &Frame, q: &[f64]) -> DMatrix<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return c.columns(&frame_jacobian_body(&c.physical, frame, &c.q(q)));
+    }
     let t_b_ee = frame_pose_in_base(robot, frame, q);
     let theta = joint_values(robot, q);
     let b_list = robot.frame_screws(frame);

@@ -2,6 +2,7 @@
 //! effector or a named frame), on a kinematic tree and a floating base.
 
 use crate::base::{base_pose, joint_offset, joint_values};
+use crate::coupling::Coupled;
 use dynamics_model::lie::{adjoint, exp6};
 use dynamics_model::{Frame, Robot};
 use nalgebra::{DMatrix, Matrix4};
@@ -29,6 +30,10 @@ pub fn jacobian_space(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn frame_jacobian_space(robot: &Robot, frame: &Frame, q: &[f64]) -> DMatrix<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return c.columns(&frame_jacobian_space(&c.physical, frame, &c.q(q)));
+    }
     let t_0b = base_pose(robot, q);
     let theta = joint_values(robot, q);
     let off = joint_offset(robot);

@@ -36,7 +36,7 @@
 //! ## Floating base
 //!
 //! With [`dynamics_model::Base::floating`], the base is body 0 on a free joint (the
-//! conventions of [`dynamics_model`]'s crate docs): nq = n + 7, nv = n + 6, and
+//! conventions of [`dynamics_model`]'s crate docs): nq = n + 7, nv = n + 6 (k for n with mimic joints), and
 //!
 //! - `q = (p, quat, θ)`: the base origin in {0}, its orientation `R` as a quaternion
 //!   `(x, y, z, w)`, scalar last, **normalised inside** (`R` from `quat/|quat|`, any nonzero
@@ -66,6 +66,21 @@
 //! Pinocchio `v = (v_b, ω_b, θ̇)`, `a = (v̇_b, ω̇_b, θ̈)`, `τ = (f_b, m_b, τ_θ)`. So entries 0..3
 //! and 3..6 swap, and so do rows and columns 0..3 and 3..6 of M, C and Ṁ: with P the
 //! permutation `(3, 4, 5, 0, 1, 2, 6, 7, …)`, `M_here = P M_pinocchio Pᵀ`.
+//!
+//! ## Mimic joints
+//!
+//! On a robot with mimic joints ([`dynamics_model::mimic`]: joint f follows its leader L,
+//! `θ_f = m·θ_L + o`), every function takes and returns the *independent* coordinates: q, ν,
+//! ν̇ and τ hold the joints without `mimic` (nq = k, nv = k with k =
+//! [`dynamics_model::Robot::n_coordinates`], + 7 and + 6 on a floating base). Inside, in one
+//! place (the `coupling` module), the call is turned into one on the physical robot (every
+//! joint independent) with `q_phys = J q + o`, `ν_phys = J ν`, `ν̇_phys = J ν̇` (J constant, so
+//! `J̇ = 0`), and the results are projected: `τ = Jᵀ τ_phys`, `M = Jᵀ M_phys J`,
+//! `Ṁ = Jᵀ Ṁ_phys J`, `c = Jᵀ c_phys`, `g = Jᵀ g_phys`, Jacobians `J_phys J`; poses and
+//! energies are the physical ones. Forward dynamics solves `M ν̇ = τ − Jᵀ bias_phys` with these,
+//! and the Coriolis matrix from the Christoffel symbols of the projected M equals
+//! `Jᵀ C_phys J`. [`link_poses`] and [`TreeFrames`] still have one entry per physical joint.
+//! A robot without mimic joints takes none of this (its numbers are bit for bit as before).
 //!
 //! # Example
 //!
@@ -126,7 +141,8 @@
 //!
 //! Every function takes the robot first. Configurations q are `&[f64]` of length
 //! nq = [`dynamics_model::Robot::nq`]; velocities, accelerations and forces (ν, ν̇, τ) are
-//! `&[f64]` of length nv = [`dynamics_model::Robot::nv`] (both n on a fixed base; a `DVector`
+//! `&[f64]` of length nv = [`dynamics_model::Robot::nv`] (both n on a fixed base without mimic
+//! joints; a `DVector`
 //! passes with `.as_slice()`); gravity is a `&Vector3<f64>`, `F_tip` a `&Vector6<f64>`.
 //! Results are `DVector<f64>` / `DMatrix<f64>` of nv entries / nv×nv (6×nv for Jacobians).
 //! Trajectories are `DMatrix<f64>` with one row per time step (N×nq for q, N×nv for ν, ν̇ and
@@ -148,6 +164,7 @@ mod base;
 mod check;
 mod configuration_rate;
 mod coriolis_matrix;
+mod coupling;
 mod end_effector_forces;
 mod end_effector_pose;
 mod error;

@@ -2,6 +2,7 @@
 //! a kinematic tree.
 
 use crate::base::{base_pose, joint_values};
+use crate::coupling::Coupled;
 use dynamics_model::lie::exp6;
 use dynamics_model::Robot;
 use nalgebra::Matrix4;
@@ -18,6 +19,10 @@ use nalgebra::Matrix4;
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn link_poses(robot: &Robot, q: &[f64]) -> Vec<Matrix4<f64>> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return link_poses(&c.physical, &c.q(q));
+    }
     let t_0b = base_pose(robot, q);
     let theta = joint_values(robot, q);
     let home = robot.home_poses();

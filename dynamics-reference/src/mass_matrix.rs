@@ -2,6 +2,7 @@
 //! Newton–Euler recursion (Modern Robotics §8.3.2 and §8.4), on a kinematic tree.
 
 use crate::base::joint_offset;
+use crate::coupling::Coupled;
 use crate::frames::TreeFrames;
 use dynamics_model::Robot;
 use nalgebra::{DMatrix, Matrix6};
@@ -33,6 +34,10 @@ use nalgebra::{DMatrix, Matrix6};
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
 pub fn mass_matrix(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
+    if let Some(c) = Coupled::of(robot) {
+        crate::check::configuration(robot, "q", q);
+        return c.matrix(&mass_matrix(&c.physical, &c.q(q)));
+    }
     let n = robot.dof();
     let frames = TreeFrames::new(robot, q);
     let a = &frames.a;

@@ -3,6 +3,7 @@
 
 use crate::base::{joint_offset, joint_part};
 use crate::check;
+use crate::coupling::Coupled;
 use crate::frames::TreeFrames;
 use dynamics_model::lie::ad;
 use dynamics_model::Robot;
@@ -35,6 +36,10 @@ use nalgebra::{DMatrix, Matrix6};
 /// If `q` does not have `robot.nq()` entries, or `qd` not `robot.nv()`.
 pub fn mass_matrix_dot(robot: &Robot, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
     check::velocity(robot, "qd", qd);
+    if let Some(c) = Coupled::of(robot) {
+        check::configuration(robot, "q", q);
+        return c.matrix(&mass_matrix_dot(&c.physical, &c.q(q), &c.v(qd)));
+    }
     let n = robot.dof();
     let frames = TreeFrames::new(robot, q);
     let a = &frames.a;

@@ -18,6 +18,12 @@ pub enum Spec {
     Tree(u64, usize, bool),
     /// `tests/data/robots/trees/<name>.urdf`, with or without a floating base.
     UrdfTree(&'static str, bool),
+    /// `random_mimics(random_tree(seed, tree_spec(dof, floating)), seed, 0.4)`: a random tree
+    /// with mimic joints.
+    TreeMimic(u64, usize, bool),
+    /// `tests/data/robots/trees/<name>.urdf` with mimic joints (fixed base), compared with
+    /// `data/reference/trees/<name>.json`.
+    UrdfMimic(&'static str),
 }
 
 include!("tree_spec.rs");
@@ -54,6 +60,18 @@ impl Spec {
             Spec::Tree(seed, dof, floating) => with_leaf_frames(
                 dynamics_model::random::random_tree(seed, tree_spec(dof, floating)),
             ),
+            Spec::TreeMimic(seed, dof, floating) => {
+                with_leaf_frames(dynamics_model::random::random_mimics(
+                    dynamics_model::random::random_tree(seed, tree_spec(dof, floating)),
+                    seed,
+                    0.4,
+                ))
+            }
+            Spec::UrdfMimic(name) => {
+                let path = data_dir().join(format!("robots/trees/{name}.urdf"));
+                dynamics_model::load_file(&path, &LoadOptions::default())
+                    .unwrap_or_else(|e| panic!("{e}"))
+            }
         }
     }
 }
@@ -65,7 +83,7 @@ pub fn data_dir() -> std::path::PathBuf {
 
 /// A generated robot, evaluated through f64 slices whatever its scalar type.
 pub trait GeneratedDynamics: Sync {
-    /// n.
+    /// The number of joint coordinates (mimic joints not counted).
     fn dof(&self) -> usize;
     /// The length of q.
     fn nq(&self) -> usize;

@@ -60,9 +60,14 @@ impl Provenance {
             None => String::new(),
         };
         lines.push(format!("Source: {}{hash}.", inert(&self.source)));
-        let n = robot.dof();
+        let n = robot.n_coordinates();
+        let mimic = match robot.dof() - n {
+            0 => String::new(),
+            1 => " and 1 mimic joint".to_string(),
+            m => format!(" and {m} mimic joints"),
+        };
         lines.push(format!(
-            "Robot {}: {n} joint{}; struct {}.",
+            "Robot {}: {n} joint{}{mimic}; struct {}.",
             inert(&robot.name),
             if n == 1 { "" } else { "s" },
             inert(&generated.struct_name)

@@ -35,7 +35,7 @@
 use super::base::{base_rotation, NQ_BASE, NV_BASE};
 use super::frames::{joint_frames, BodyInertia, JointFrames};
 use super::spatial::{VectorOps, V3};
-use super::{input, joint_motions, Q};
+use super::{input, joint_motions, mimic, Q};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::lie::{rotation, trans_inv, translation};
 use dynamics_model::{Frame, JointKind, Robot};
@@ -49,7 +49,8 @@ pub type M3 = [[ExprId; 3]; 3];
 pub struct FrameKinematics {
     /// `T_{0f}(q)`: the rotation by rows (9 entries), then the translation (3).
     pub pose: Vec<ExprId>,
-    /// `J_s(q)`, 6×nv row-major (rows ω then v, in {0}).
+    /// `J_s(q)`, 6×nv row-major (rows ω then v, in {0}); with mimic joints, columns for the
+    /// independent coordinates (`J_s · J`).
     pub jacobian_space: Vec<ExprId>,
     /// `J_b(q)`, 6×nv row-major (rows ω then v, in the frame).
     pub jacobian_body: Vec<ExprId>,
@@ -181,13 +182,19 @@ fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId]) -> Vec<Pos
 
 /// Expands the pose and Jacobians of the end effector and of every named frame of `robot`.
 pub fn expand_kinematics(robot: &Robot) -> Kinematics {
-    let frames = joint_frames(robot);
+    let mut frames = joint_frames(robot);
+    // Mimic joints: the inputs are the independent coordinates (see [`super::mimic`]).
+    mimic::offsets(&mut frames, robot);
+    let coupling = mimic::Coupling::new(robot);
     let n = robot.dof();
     let floating = robot.base.floating;
     let (oq, ov) = if floating { (NQ_BASE, NV_BASE) } else { (0, 0) };
     let nv = n + ov;
     let mut g = ExprGraph::new();
-    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, oq + i))).collect();
+    let x: Vec<ExprId> = (0..robot.n_coordinates())
+        .map(|i| g.input(input(Q, oq + i)))
+        .collect();
+    let q = coupling.positions(&mut g, &x);
     let poses = joint_poses(&mut g, &frames, &q);
     // The base pose T_{0b}: from q on a floating base.
     let base = floating.then(|| {
@@ -195,8 +202,17 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
         Pose { r, p }
     });
-    let mut one =
-        |frame: &Frame| frame_kinematics(&mut g, robot, &frames, &q, &poses, base, frame, nv);
+    let mut one = |frame: &Frame| {
+        let mut k = frame_kinematics(&mut g, robot, &frames, &q, &poses, base, frame, nv);
+        // The physical joints' columns onto the coordinates: each row times J.
+        for j in [&mut k.jacobian_space, &mut k.jacobian_body] {
+            *j = j
+                .chunks(nv)
+                .flat_map(|row| coupling.forces(&mut g, row))
+                .collect();
+        }
+        k
+    };
     let end_effector = one(&robot.end_effector);
     let named = robot.frames.iter().map(&mut one).collect();
     let potential_energy = potential_energy(&mut g, robot, &frames, &poses, base);

@@ -29,6 +29,12 @@
 //!
 //! The leaves of the graph are the inputs of the generated functions: `q`, `q̇`, `q̈`, `τ`
 //! (groups [`Q`], [`QD`], [`QDD`], [`TAU`]), and `sin q_i`, `cos q_i` of revolute joints.
+//!
+//! Mimic joints ([`mimic`]): the inputs are the independent coordinates only; a follower's
+//! angle is `m·q_L + (o + θ₀)` and its rates `m·q̇_L`, `m·q̈_L`, the recursions run over the
+//! physical joints unchanged, and their outputs are projected (`τ_L = Σ m_f τ_f`,
+//! `M = Jᵀ M J`). Forward dynamics then takes [`ForwardRoute::Ldlt`] alone: the
+//! articulated-body algorithm assumes one coordinate per joint and is not expanded.
 
 pub mod aba;
 pub mod base;
@@ -36,6 +42,7 @@ pub mod crba;
 pub mod frames;
 pub mod kinematics;
 pub mod ldlt;
+pub mod mimic;
 pub mod rnea;
 pub mod rnea_classical;
 pub mod spatial;
@@ -76,11 +83,12 @@ pub enum ForwardRoute {
 pub struct Dynamics {
     /// The shared expression graph.
     pub graph: ExprGraph,
-    /// n, the number of joints.
+    /// k, the number of joint coordinates: the joints that mimic no other (n, the number of
+    /// joints, for a robot without mimic joints).
     pub dof: usize,
-    /// The length of q: n, or n + 7 with a floating base.
+    /// The length of q: k, or k + 7 with a floating base.
     pub nq: usize,
-    /// The length of ν, ν̇ and τ: n, or n + 6 with a floating base.
+    /// The length of ν, ν̇ and τ: k, or k + 6 with a floating base.
     pub nv: usize,
     /// `M(q)`, nv×nv row-major.
     pub mass_matrix: Vec<ExprId>,
@@ -100,12 +108,14 @@ pub struct Dynamics {
 }
 
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
-/// by the cheaper of the two routes (ties: [`ForwardRoute::Ldlt`]).
+/// by the cheaper of the two routes (ties: [`ForwardRoute::Ldlt`]; with mimic joints always
+/// LDLᵀ).
 pub fn expand(robot: &Robot) -> Dynamics {
     expand_routes(robot, None, true)
 }
 
-/// [`expand`] with forward dynamics by the given route.
+/// [`expand`] with forward dynamics by the given route (LDLᵀ for a robot with mimic joints,
+/// whatever is asked).
 pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
     expand_routes(robot, Some(route), true)
 }
@@ -121,8 +131,17 @@ fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<ExprId> {
 
 /// The expansion; `prune`: replace identically zero nodes by 0 ([`ExprGraph::prune_zeros`]).
 pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: bool) -> Dynamics {
-    let frames = frames::joint_frames(robot);
-    let n = robot.dof();
+    let mut frames = frames::joint_frames(robot);
+    let coupling = mimic::Coupling::new(robot);
+    mimic::offsets(&mut frames, robot);
+    // With mimic joints only LDLᵀ applies (see [`mimic`]).
+    let route = if coupling.is_identity() {
+        route
+    } else {
+        Some(ForwardRoute::Ldlt)
+    };
+    // k coordinates (n physical joints when none mimics another).
+    let k = robot.n_coordinates();
     let floating = frames.base.is_some();
     // Offsets of the joints in q and in ν: after the base's position and quaternion, and
     // after its twist.
@@ -131,18 +150,25 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     } else {
         (0, 0)
     };
-    let nv = n + ov;
+    let nv = k + ov;
     let mut g = ExprGraph::new();
-    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, oq + i))).collect();
-    let qd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
-    let qdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
+    let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, oq + i))).collect();
+    let xd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
+    let xdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
     let tau: Vec<ExprId> = (0..nv).map(|i| g.input(input(TAU, i))).collect();
+    // The physical joints' positions, velocities and accelerations (the inputs themselves
+    // without mimic joints).
+    let q = coupling.positions(&mut g, &x);
+    let qd = coupling.rates(&mut g, &xd);
+    let qdd = coupling.rates(&mut g, &xdd);
+    let nv_phys = qd.len();
     let zero = g.zero();
-    let zeros = vec![zero; nv];
+    let zeros = vec![zero; nv_phys];
     let motions = joint_motions(&mut g, &frames, &q);
     let base_inertia = frames.base.as_ref();
     let no_gravity = [0.0; 3];
     let mass_matrix = crba::crba(&mut g, &motions, base_inertia);
+    let mass_matrix = coupling.matrix(&mut g, &mass_matrix);
     let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: [f64; 3]| {
         let base = base::base_motion(g, floating, &v[..ov], &vd[..ov], gravity);
         let (v, vd) = (&v[ov..], &vd[ov..]);
@@ -157,9 +183,11 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
             LinkForce::Classical,
         );
         let c = rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd);
-        // The cheapest of the equal forms (ties keep the earlier one).
+        // The cheapest of the equal forms (ties keep the earlier one), projected onto the
+        // coordinates.
         let best = cheaper(g, a, b);
-        cheaper(g, best, c)
+        let best = cheaper(g, best, c);
+        coupling.forces(g, &best)
     };
     let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
     let gravity = best_rnea(&mut g, &zeros, &zeros, frames.gravity);
@@ -175,7 +203,13 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     // the bias wrenches (ties keep the earlier one).
     let aba_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], frames.gravity);
     let mut by_aba: Option<Vec<ExprId>> = None;
-    for bias in [LinkForce::Spatial, LinkForce::Classical] {
+    // The articulated-body algorithm has one coordinate per joint: not for mimic joints.
+    let aba_forms = if !coupling.is_identity() {
+        &[][..]
+    } else {
+        &[LinkForce::Spatial, LinkForce::Classical][..]
+    };
+    for &bias in aba_forms {
         for form in [ShiftForm::Direct, ShiftForm::Folded, ShiftForm::Sparse] {
             let candidate = aba::aba(
                 &mut g,
@@ -232,8 +266,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let kinetic_energy = kinetic_energy(&mut g, &mass_matrix, nv);
     Dynamics {
         graph: g,
-        dof: n,
-        nq: n + oq,
+        dof: k,
+        nq: k + oq,
         nv,
         mass_matrix,
         coriolis,
@@ -362,3 +396,6 @@ mod tests;
 
 #[cfg(test)]
 mod tree_tests;
+
+#[cfg(test)]
+mod mimic_tests;

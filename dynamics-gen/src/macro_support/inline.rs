@@ -789,19 +789,37 @@ fn to_toml(v: &Value, ty: Type, errors: &mut Errors) -> Option<Toml> {
                 None
             }
         },
-        Type::Pose => match &v.kind {
-            Kind::Array(_) => to_toml(v, Type::Matrix, errors),
+        Type::Pose | Type::Mimic => match &v.kind {
+            Kind::Array(_) if ty == Type::Pose => to_toml(v, Type::Matrix, errors),
             Kind::Table(entries) => {
                 let mut t = Table::new();
                 let mut seen = Vec::new();
-                let keys = [("xyz", Type::Nums), ("rpy", Type::Nums)];
+                let (keys, what) = if ty == Type::Pose {
+                    (&[("xyz", Type::Nums), ("rpy", Type::Nums)][..], "a pose")
+                } else {
+                    (
+                        &[
+                            ("joint", Type::Name),
+                            ("multiplier", Type::Num),
+                            ("offset", Type::Num),
+                        ][..],
+                        "a mimic",
+                    )
+                };
                 for e in entries {
-                    let Some(ty) = key_type(e, &keys, &mut seen, "a pose", errors) else {
+                    let Some(ty) = key_type(e, keys, &mut seen, what, errors) else {
                         continue;
                     };
                     if let Some(x) = to_toml(&e.value, ty, errors) {
                         t.insert(e.key.to_string(), x);
                     }
+                }
+                if ty == Type::Mimic && !t.contains_key("joint") {
+                    errors.at(
+                        &v.tokens,
+                        format!("a mimic needs the joint it follows: {}", ty.example()),
+                    );
+                    return None;
                 }
                 Some(Toml::Table(t))
             }

@@ -43,7 +43,8 @@
 //!     end_effector bob { home: { xyz: [0, 0, 0] } },  // optional: M_{n,n+1}, default identity
 //!     // Trees: `parent: LINK` in a joint (default: the previous joint's link) and in the end
 //!     // effector; `base NAME { floating: true, mass: …, inertia: … }` for a floating base
-//!     // (see `inline` for every key).
+//!     // (see `inline` for every key). A mimic joint, which follows another (no coordinate
+//!     // of its own): `mimic: { joint: LEADER, multiplier: 1, offset: 0 }` in its block.
 //! }
 //! ```
 //!

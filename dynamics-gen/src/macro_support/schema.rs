@@ -18,6 +18,8 @@ pub enum Type {
     About,
     /// A name or string.
     Name,
+    /// `{ joint: LEADER, multiplier: m, offset: o }`.
+    Mimic,
 }
 
 impl Type {
@@ -31,6 +33,7 @@ impl Type {
             Type::Shape => "a shape: `{ box: [w, l, h] }`, `{ cylinder: [r, h] }`, `{ sphere: r }`, `{ ellipsoid: [a, b, c] }`, `{ plate: [w, l] }` or `{ disc: r }`",
             Type::About => "`com` or `origin`",
             Type::Name => "a name or a string",
+            Type::Mimic => "a mimic: `{ joint: LEADER, multiplier: m, offset: o }` (multiplier and offset optional)",
         }
     }
 }
@@ -54,6 +57,7 @@ pub const JOINT_KEYS: &[(&str, Type)] = &[
     ("friction", Type::Num),
     ("rotor_inertia", Type::Num),
     ("gear_ratio", Type::Num),
+    ("mimic", Type::Mimic),
 ];
 
 /// Inertial keys of a link or of one of its bodies.

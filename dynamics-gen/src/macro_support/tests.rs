@@ -361,3 +361,63 @@ fn tree_and_base_model_errors_name_the_field() {
     // Joint c, which hangs from the base by name, is fine: it is only named in b's error.
     assert_eq!(all.matches("joint `c`").count(), 1, "{all}");
 }
+
+#[test]
+fn mimic_in_the_inline_grammar() {
+    let robot = inline_robot(quote! {
+        pub struct Gripper;
+        joint revolute wrist {
+            screw: [0, 0, 1, 0, 0, 0],
+            link palm { home: { xyz: [0, 0, 0.2] }, mass: 1.0, inertia: [0.01, 0.01, 0.01, 0, 0, 0] },
+        },
+        joint prismatic left {
+            axis: [0, 1, 0],
+            link left_finger { home: { xyz: [0, 0.02, 0.1] }, mass: 0.1, inertia: [0.001, 0.001, 0.001, 0, 0, 0] },
+        },
+        joint prismatic right {
+            axis: [0, -1, 0],
+            parent: palm,
+            mimic: { joint: left, multiplier: 1.0, offset: 0.001 },
+            link right_finger { home: { xyz: [0, -0.02, 0.1] }, mass: 0.1, inertia: [0.001, 0.001, 0.001, 0, 0, 0] },
+        },
+    });
+    assert_eq!(robot.joint_names(), ["wrist", "left"]);
+    assert_eq!(
+        robot.joints[2].mimic,
+        Some(dynamics_model::Mimic {
+            leader: 1,
+            multiplier: 1.0,
+            offset: 0.001
+        })
+    );
+    let errors = inline_errors(quote! {
+        pub struct Gripper;
+        joint revolute wrist {
+            screw: [0, 0, 1, 0, 0, 0],
+            mimic: { multiplier: 2 },
+            link palm { home: { xyz: [0, 0, 0.2] }, mass: 1.0, inertia: [0.01, 0.01, 0.01, 0, 0, 0] },
+        },
+    });
+    assert!(
+        errors.iter().any(|e| e.contains("the joint it follows")),
+        "{errors:?}"
+    );
+    let errors = inline_errors(quote! {
+        pub struct Gripper;
+        joint revolute wrist {
+            screw: [0, 0, 1, 0, 0, 0],
+            link palm { home: { xyz: [0, 0, 0.2] }, mass: 1.0, inertia: [0.01, 0.01, 0.01, 0, 0, 0] },
+        },
+        joint revolute other {
+            screw: [0, 0, 1, 0, 0, 0],
+            mimic: { joint: thumb },
+            link finger { home: { xyz: [0, 0, 0.2] }, mass: 1.0, inertia: [0.01, 0.01, 0.01, 0, 0, 0] },
+        },
+    });
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("`mimic`") && e.contains("names no joint")),
+        "{errors:?}"
+    );
+}

@@ -167,6 +167,9 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
             });
         }
     }
+    if errors.is_empty() {
+        mimics(&spec.joints, &mut joints, &mut errors);
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -379,7 +382,78 @@ fn joint(subject: &Subject, j: &JointSpec, errors: &mut Vec<Invalid>) -> Option<
         friction,
         rotor_inertia,
         gear_ratio,
+        mimic: None,
     })
+}
+
+/// The `mimic` keys: each leader found by name, chains resolved to their root leader
+/// ([`crate::mimic::resolve_chains`]), cycles refused; `joints` are the built joints, one
+/// per spec.
+fn mimics(specs: &[JointSpec], joints: &mut [Joint], errors: &mut Vec<Invalid>) {
+    let subject = |i: usize| Subject::Joint {
+        index: Some(i),
+        name: specs[i].name.clone(),
+    };
+    let others = |i: usize| -> String {
+        let v: Vec<String> = specs
+            .iter()
+            .enumerate()
+            .filter(|&(k, s)| k != i && s.mimic.is_none())
+            .map(|(_, s)| format!("`{}`", s.name))
+            .collect();
+        v.join(", ")
+    };
+    let mut written = vec![None; specs.len()];
+    for (i, s) in specs.iter().enumerate() {
+        let Some(m) = &s.mimic else { continue };
+        let (multiplier, offset) = (m.multiplier.unwrap_or(1.0), m.offset.unwrap_or(0.0));
+        match specs.iter().position(|l| l.name == m.joint) {
+            None => errors.push(Invalid::new(
+                subject(i),
+                "mimic",
+                format!(
+                    "`mimic.joint = \"{}\"` names no joint of the robot",
+                    m.joint
+                ),
+                format!("give the name of the joint it follows: {}", others(i)),
+            )),
+            Some(l) if l == i => errors.push(Invalid::new(
+                subject(i),
+                "mimic",
+                "the joint follows itself".to_string(),
+                format!("give the name of the joint it follows: {}", others(i)),
+            )),
+            Some(l) => {
+                written[i] = Some(crate::mimic::Written {
+                    leader: l,
+                    multiplier,
+                    offset,
+                })
+            }
+        }
+    }
+    for (i, r) in crate::mimic::resolve_chains(&written)
+        .into_iter()
+        .enumerate()
+    {
+        match r {
+            None => {}
+            Some(Ok(m)) => joints[i].mimic = Some(m),
+            Some(Err(cycle)) => {
+                let names: Vec<&str> = cycle.iter().map(|&k| specs[k].name.as_str()).collect();
+                errors.push(Invalid::new(
+                    subject(i),
+                    "mimic",
+                    format!(
+                        "the mimic joints form a cycle ({} → {}): no joint of it is independent",
+                        names.join(" → "),
+                        names[0]
+                    ),
+                    "remove `mimic` from one joint of the cycle, which becomes the leader of the others",
+                ));
+            }
+        }
+    }
 }
 
 /// `S_i` from `screw`, or from `axis` (and `point` for a revolute joint).

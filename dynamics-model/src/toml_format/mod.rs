@@ -37,6 +37,8 @@
 //! friction = 0.0                   # reserved, Coulomb, N·m: only 0 (not modelled yet)
 //! rotor_inertia = 0.0              # reserved, kg·m², motor side: only 0 (not modelled yet)
 //! gear_ratio = 1.0                 # reserved, motor turns per joint turn: only 1
+//! # mimic = { joint = "elbow", multiplier = 1.0, offset = 0.0 }  # optional: a coupled
+//! #                                # joint, θ = multiplier·θ_elbow + offset (see "Mimic joints")
 //!
 //! [joint.link]                     # the link moved by this joint, with its frame {i}
 //! name = "upper_arm"               # required, unique (and not the base's name)
@@ -111,6 +113,16 @@
 //! configuration. The base is fixed unless `[base] floating = true` (or the loader is asked
 //! for a floating base); its inertial keys are a link's, expressed in {0}, and are part of
 //! the dynamics only when it floats.
+//!
+//! ## Mimic joints
+//!
+//! `mimic = { joint = "LEADER", multiplier = m, offset = o }` (m default 1, o default 0)
+//! couples a joint to another, as URDF's `<mimic>`: `θ = m·θ_LEADER + o` (and `θ̇ = m·θ̇_LEADER`).
+//! The joint keeps its link and moves it, but it is not a coordinate: q, ν, ν̇ and τ hold the
+//! other joints only (see [`crate::mimic`]). The leader may come before or after the joint
+//! and may follow another joint in turn (the chain is composed); a leader that is no joint of
+//! the robot, the joint itself, a cycle of mimics, or a multiplier that is zero or not finite
+//! is an error naming the joint and the field `mimic`.
 //!
 //! ## Poses
 //!

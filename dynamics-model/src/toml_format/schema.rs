@@ -67,8 +67,22 @@ pub(crate) struct JointSpec {
     pub friction: Option<f64>,
     pub rotor_inertia: Option<f64>,
     pub gear_ratio: Option<f64>,
+    /// `mimic = { joint = "..", multiplier = .., offset = .. }`: a coupled joint.
+    pub mimic: Option<MimicSpec>,
     /// The link this joint moves (`[joint.link]`).
     pub link: LinkSpec,
+}
+
+/// `mimic = { joint = "leader", multiplier = m, offset = o }`: θ = m·θ_leader + o.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MimicSpec {
+    /// The joint followed (by name).
+    pub joint: String,
+    /// m (default 1).
+    pub multiplier: Option<f64>,
+    /// o (default 0).
+    pub offset: Option<f64>,
 }
 
 /// Where a rotational inertia is taken about.

@@ -1,5 +1,5 @@
 //! Locked joints: the values the user gives (checked against the joint's limits), and the
-//! mimic joints that follow a locked leader.
+//! mimic joints: following a locked leader, or left movable as coupled coordinates.
 //!
 //! - A lock value must be finite, at most [`MAX_LOCK`] in magnitude, and within the joint's
 //!   `<limit lower upper>` when it has limits (a continuous joint, or `lower = upper = 0`,
@@ -9,14 +9,19 @@
 //!   The derived value is not checked against the follower's limits (it is what the
 //!   mechanism does). A follower also locked explicitly must be locked at that value (to
 //!   1e-9, relative): another value is an error, since the mimic ties the two joints.
-//! - A movable joint with `<mimic>` left movable (its leader not locked) is refused
-//!   ([`mimic_errors`]): coupled coordinates are not modelled, and treating it as an
-//!   independent joint would give the wrong dynamics. The error suggests locking it (written
-//!   `--lock A=0`; the value is 0, or the nearest limit when 0 is outside the limits) or its
-//!   leader.
+//! - Locking a follower whose leader stays movable is an error: the mimic ties the follower
+//!   to a joint that moves, so it cannot be fixed alone. The error names the lock of the root
+//!   leader that fixes it at the value asked for (`--lock L=(v − o)/m`, up the chain), which
+//!   locks the leader's other followers with it.
+//! - A movable joint with `<mimic>` left movable (its leader not locked) is a coupled
+//!   coordinate ([`crate::Joint::mimic`], [`mimic_links`]): chains are resolved to the root
+//!   leader, which must be a movable joint of the robot; a leader the file does not have, a
+//!   fixed (or floating, planar) leader, a cycle and a multiplier that is zero or not finite
+//!   are errors on the field `mimic` that suggest locking the follower instead.
 
 use super::convert::is_one_dof;
 use crate::error::{Invalid, Subject};
+use crate::mimic::{resolve_chains, Mimic, Written};
 use std::collections::HashMap;
 
 /// The largest lock value accepted, in rad or m: larger ones are typing mistakes, and would
@@ -205,6 +210,7 @@ fn follow_leaders(
             }
         }
     }
+    errors.extend(followers_locked_alone(urdf, &explicit, &locks, mimics));
     if errors.is_empty() {
         Ok(locks)
     } else {
@@ -212,31 +218,147 @@ fn follow_leaders(
     }
 }
 
-/// The errors of the movable joints (`movable`, in the robot's order) that mimic another
-/// joint: one per joint, each with the locks that make it fixed.
-pub fn mimic_errors(
+/// The errors of explicitly locked followers whose leader is a movable joint left free: each
+/// with the lock of the root leader (up the chain of free movable leaders) that gives the
+/// value asked for.
+fn followers_locked_alone(
     urdf: &urdf_rs::Robot,
-    movable: &[usize],
+    explicit: &HashMap<usize, f64>,
+    locks: &HashMap<usize, f64>,
     mimics: &[Option<Follows>],
 ) -> Vec<Invalid> {
-    let name = |j: usize| urdf.joints[j].name.as_str();
-    let lock_of = |j: usize| format!("{}={}", name(j), rest(&urdf.joints[j]));
-    movable
-        .iter()
-        .filter_map(|&f| {
-            let leader = &mimics[f].as_ref()?.leader_name;
+    let free_leader = |f: usize| -> Option<(usize, &Follows)> {
+        let m = mimics.get(f)?.as_ref()?;
+        let l = m.leader?;
+        (is_one_dof(&urdf.joints[l].joint_type) && !locks.contains_key(&l)).then_some((l, m))
+    };
+    let mut sorted: Vec<(&usize, &f64)> = explicit.iter().collect();
+    sorted.sort_by_key(|(f, _)| **f);
+    sorted
+        .into_iter()
+        .filter_map(|(&f, &v)| {
+            let (leader, first) = free_leader(f)?;
+            // Up the chain: θ_leader = (θ_f − o)/m.
+            let (mut root, mut value, mut seen) = (leader, (v - first.offset) / first.multiplier, vec![f, leader]);
+            while let Some((l, m)) = free_leader(root).filter(|(l, _)| !seen.contains(l)) {
+                value = (value - m.offset) / m.multiplier;
+                root = l;
+                seen.push(l);
+            }
+            let name = &urdf.joints[f].name;
+            let root_name = &urdf.joints[root].name;
+            let fix = if value.is_finite() {
+                format!(
+                    "lock the leader instead, `--lock {root_name}={value}`, which locks `{name}` at {v} (and the other joints that follow `{root_name}` with it), or drop the lock to keep `{name}` as a coupled joint"
+                )
+            } else {
+                format!("lock the leader `{root_name}` instead (which locks `{name}` with it), or drop the lock to keep `{name}` as a coupled joint")
+            };
             Some(Invalid::new(
-                subject(name(f)),
-                "mimic",
+                subject(name),
+                "lock",
                 format!(
-                    "a movable joint that mimics joint `{leader}` is not supported (it is not an independent joint)"
+                    "the joint mimics `{}`, which is not locked: a joint that follows a moving leader cannot be locked alone",
+                    first.leader_name
                 ),
-                format!(
-                    "lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), e.g. `--lock {1}`, or lock `{leader}` (which locks it too), or make it fixed",
-                    name(f),
-                    lock_of(f)
-                ),
+                fix,
             ))
         })
         .collect()
+}
+
+/// The coupling of every movable joint (`movable`: URDF joint indices, in the robot's
+/// order): `None` for an independent joint, the [`Mimic`] of a follower with its root leader
+/// as an index into `movable`; or every error found (one per joint, each suggesting its lock).
+pub fn mimic_links(
+    urdf: &urdf_rs::Robot,
+    movable: &[usize],
+    mimics: &[Option<Follows>],
+) -> Result<Vec<Option<Mimic>>, Vec<Invalid>> {
+    let name = |j: usize| urdf.joints[j].name.as_str();
+    let lock_fix = |f: usize, also: &str| {
+        format!(
+            "{also}lock it at a value (CLI `--lock {0}=VALUE`, Builder `.lock(\"{0}\", VALUE)`, derive `lock({0} = VALUE)`), e.g. `--lock {0}={1}`, or make it fixed",
+            name(f),
+            rest(&urdf.joints[f])
+        )
+    };
+    let mut errors = Vec::new();
+    // The file's mimics among the movable joints, by URDF joint index.
+    let mut written: Vec<Option<Written>> = vec![None; urdf.joints.len()];
+    for &f in movable {
+        let Some(m) = &mimics[f] else { continue };
+        let err =
+            |problem: String, fix: String| Invalid::new(subject(name(f)), "mimic", problem, fix);
+        let leader = m.leader.filter(|l| movable.contains(l));
+        if !(m.multiplier.is_finite() && m.multiplier != 0.0) {
+            errors.push(err(
+                format!("the multiplier {} is not a finite, non-zero number", m.multiplier),
+                lock_fix(f, "give `<mimic multiplier>` a finite non-zero value (θ = multiplier·θ_leader + offset), or "),
+            ));
+        } else if !m.offset.is_finite() {
+            errors.push(err(
+                format!("the offset {} is not finite", m.offset),
+                lock_fix(f, "give `<mimic offset>` a finite value, or "),
+            ));
+        } else if let Some(l) = leader {
+            written[f] = Some(Written {
+                leader: l,
+                multiplier: m.multiplier,
+                offset: m.offset,
+            });
+        } else if let Some(l) = m.leader {
+            errors.push(err(
+                format!(
+                    "it mimics joint `{}`, which is {}: a mimic joint follows a movable (revolute, continuous or prismatic) joint",
+                    m.leader_name,
+                    match &urdf.joints[l].joint_type {
+                        urdf_rs::JointType::Fixed => "fixed",
+                        _ if is_one_dof(&urdf.joints[l].joint_type) => "not part of the robot",
+                        _ => "not a one-degree-of-freedom joint",
+                    }
+                ),
+                lock_fix(f, &format!("make `{}` movable, or ", m.leader_name)),
+            ));
+        } else {
+            errors.push(err(
+                format!(
+                    "it mimics joint `{}`, which the file does not have",
+                    m.leader_name
+                ),
+                lock_fix(f, "name an existing movable joint in `<mimic joint>`, or "),
+            ));
+        }
+    }
+    let position = |j: usize| movable.iter().position(|&m| m == j);
+    let mut out = vec![None; movable.len()];
+    let resolved = resolve_chains(&written);
+    for (k, &f) in movable.iter().enumerate() {
+        match &resolved[f] {
+            // The root leader has no written mimic: an independent movable joint, or a
+            // follower refused above (left out).
+            Some(Ok(m)) if mimics[m.leader].is_none() => {
+                out[k] = position(m.leader).map(|leader| Mimic { leader, ..*m });
+            }
+            None | Some(Ok(_)) => {}
+            Some(Err(cycle)) => {
+                let names: Vec<&str> = cycle.iter().map(|&j| name(j)).collect();
+                errors.push(Invalid::new(
+                    subject(name(f)),
+                    "mimic",
+                    format!(
+                        "the mimic joints form a cycle ({} → {}): none of them is an independent joint to follow",
+                        names.join(" → "),
+                        names[0]
+                    ),
+                    lock_fix(f, "remove the `<mimic>` of one joint of the cycle (it becomes the leader of the others), or "),
+                ));
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
 }

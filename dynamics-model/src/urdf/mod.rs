@@ -49,6 +49,16 @@
 //! `<safety_controller>`, unknown tags and unknown attributes. Skipped elements must still be
 //! well-formed XML.
 //!
+//! # Mimic joints
+//!
+//! A movable joint with `<mimic joint="L" multiplier="m" offset="o">` (m = 1, o = 0 by
+//! default) is a coupled coordinate, as in Pinocchio 3 (`buildModelFromUrdf(.., mimic=True)`):
+//! it keeps its place among the joints and moves its link by `θ = m·θ_L + o`
+//! ([`crate::Joint::mimic`], [`crate::mimic`]), but q, ν, ν̇ and τ hold the independent joints
+//! only ([`crate::Robot::nq`], [`crate::Robot::joint_names`]). A chain (`c` mimics `b`, which
+//! mimics `a`) is resolved to its root leader; the leader may come before or after its
+//! followers in the joint order. Grippers and coupled fingers thus load without locks.
+//!
 //! # Locks
 //!
 //! [`LoadOptions::lock`] (`--lock JOINT=VALUE`) turns movable joints into fixed ones at a
@@ -56,7 +66,9 @@
 //! into the body they hang from. The value must be finite, at most 1e6 in magnitude and
 //! within the joint's `<limit lower upper>` (continuous joints have none). Locking a joint
 //! also locks the movable joints that `<mimic>` it, at `multiplier·value + offset`; a follower
-//! locked explicitly too must be locked at that same value.
+//! locked explicitly too must be locked at that same value. A follower cannot be locked while
+//! its leader moves (that would break the coupling): the error gives the lock of the leader
+//! that fixes the follower at the value asked for, `--lock L=(value − o)/m`.
 //!
 //! # What is refused, by name
 //!
@@ -66,9 +78,11 @@
 //! without `xyz`, `<limit>` without `velocity` before URDF 1.2, `<mimic>` without `joint`);
 //! numbers that do not parse or are not finite; unknown links, links with two parents and
 //! closed loops, several roots; `planar` joints, and `floating` joints anywhere but as the
-//! floating root joint above; a robot without movable joints; movable joints with `<mimic>`
-//! whose leader is not locked (coupled coordinates are not modelled: the error suggests the
-//! lock, `--lock A=0` on the CLI, [`LoadOptions::lock`] for the Builder and derive); negative
+//! floating root joint above; a robot without movable joints; a movable `<mimic>` joint whose
+//! leader the file does not have or is not movable (fixed, floating, planar), mimic joints in
+//! a cycle, a `<mimic multiplier>` that is zero (the error suggests locking the follower
+//! instead, `--lock A=0` on the CLI, [`LoadOptions::lock`] for the Builder and derive); a
+//! follower locked while its leader moves (the error names the leader's lock); negative
 //! masses and physically impossible inertias (checked per URDF link, on moving bodies and on a
 //! floating base); zero axes; lock values that are not finite, absurd or outside the joint's
 //! limits (blamed on the lock, not on the file); a `tip` that names no link of the robot.
@@ -158,12 +172,9 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         .into_iter()
         .filter(|&j| joints[j].kind.is_some())
         .collect();
-    let errors = locks::mimic_errors(urdf, &movable, &mimics);
-    if !errors.is_empty() {
-        return Err(errors);
-    }
+    let mimic = locks::mimic_links(urdf, &movable, &mimics)?;
     let floating = options.floating_base || floating_root.is_some();
-    assemble::robot(
+    let mut robot = assemble::robot(
         urdf,
         &tree,
         &joints,
@@ -172,5 +183,9 @@ fn convert_robot(urdf: &urdf_rs::Robot, options: &LoadOptions) -> Result<Robot, 
         tip,
         frames.as_deref(),
         floating,
-    )
+    )?;
+    for (joint, mimic) in robot.joints.iter_mut().zip(mimic) {
+        joint.mimic = mimic;
+    }
+    Ok(robot)
 }

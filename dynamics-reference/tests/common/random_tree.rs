@@ -2,7 +2,7 @@
 //! states, fixed and floating, for identity tests.
 
 use super::random_chain::Rng;
-use dynamics_model::random::{random_tree, TreeSpec};
+use dynamics_model::random::{random_mimics, random_tree, TreeSpec};
 use dynamics_model::{JointKind, Robot};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector6};
 
@@ -22,7 +22,8 @@ pub struct TreeSample {
 }
 
 /// A random q for `robot`: base position in [−1, 1)³ and a random quaternion of norm in
-/// [0.5, 2) when floating; θ ∈ [−π, π) (revolute) or [−0.5, 0.5) m (prismatic).
+/// [0.5, 2) when floating; θ ∈ [−π, π) (revolute) or [−0.5, 0.5) m (prismatic) for each
+/// independent joint (mimic joints have no entry).
 pub fn random_configuration(rng: &mut Rng, robot: &Robot) -> Vec<f64> {
     let mut q = Vec::with_capacity(robot.nq());
     if robot.base.floating {
@@ -37,7 +38,7 @@ pub fn random_configuration(rng: &mut Rng, robot: &Robot) -> Vec<f64> {
         let scale = rng.uniform(0.5, 2.0);
         q.extend(quat.iter().map(|x| x * scale));
     }
-    for j in &robot.joints {
+    for j in robot.joints.iter().filter(|j| j.is_independent()) {
         q.push(match j.kind {
             JointKind::Revolute => rng.uniform(-std::f64::consts::PI, std::f64::consts::PI),
             JointKind::Prismatic => rng.uniform(-0.5, 0.5),
@@ -49,6 +50,12 @@ pub fn random_configuration(rng: &mut Rng, robot: &Robot) -> Vec<f64> {
 /// `count` random trees from `seed`: tree k has 1 + k mod `max_dof` bodies, a floating base
 /// unless k is a multiple of 3, about 30 % prismatic joints and 40 % branching.
 pub fn trees(seed: u64, count: usize, max_dof: usize) -> Vec<TreeSample> {
+    trees_coupled(seed, count, max_dof, 0.0)
+}
+
+/// [`trees`] with each joint made a mimic joint with probability `mimic`
+/// ([`dynamics_model::random::random_mimics`]; none for 0, the trees of [`trees`]).
+pub fn trees_coupled(seed: u64, count: usize, max_dof: usize, mimic: f64) -> Vec<TreeSample> {
     let mut rng = Rng::new(seed);
     (0..count)
         .map(|k| {
@@ -58,7 +65,11 @@ pub fn trees(seed: u64, count: usize, max_dof: usize) -> Vec<TreeSample> {
                 branching: 0.4,
                 floating: k % 3 != 0,
             };
-            let robot = random_tree(seed.wrapping_add(k as u64), spec);
+            let tree_seed = seed.wrapping_add(k as u64);
+            let mut robot = random_tree(tree_seed, spec);
+            if mimic > 0.0 {
+                robot = random_mimics(robot, tree_seed, mimic);
+            }
             let q = random_configuration(&mut rng, &robot);
             let nv = robot.nv();
             TreeSample {

@@ -29,9 +29,11 @@ pub enum Command {
     /// {n+1}). Each output line holds `mass_matrix`, `coriolis`, `gravity`,
     /// `inverse_dynamics`, `forward_dynamics`, `coriolis_matrix` and `end_effector_pose`
     /// (matrices as lists of rows). A line whose results are not finite (e.g. q̇ = 1e300) is
-    /// an error for that line.
+    /// an error for that line. With mimic joints, q, qd, qdd and tau hold the independent
+    /// joints only (see `joints`).
     Eval(EvalArgs),
-    /// List the movable joints in vector order: name, type, screw axis S_i in {0}, limits.
+    /// List the movable joints in vector order: name, type, index in q, screw axis S_i in {0},
+    /// limits; a mimic joint has no index and says which joint it follows.
     Joints(ModelArgs),
     /// List the shipped robots.
     Robots,

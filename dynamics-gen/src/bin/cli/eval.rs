@@ -75,14 +75,21 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
 fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
     let state: State = serde_json::from_str(line).map_err(|e| json_message(&e))?;
     let (nq, nv) = (robot.nq(), robot.nv());
+    let mimic = match robot.dof() - robot.n_coordinates() {
+        0 => String::new(),
+        m => format!(
+            "; its {m} mimic joint{} follow their leaders and have no entries (see `dynamics-gen joints`)",
+            if m == 1 { "" } else { "s" }
+        ),
+    };
     let what = |len: usize| {
         if robot.base.floating {
             format!(
-                "{len} (a floating base: q = (p, quat x y z w, {n} joints), velocities, accelerations and forces = (base twist or wrench, {n} joints))",
-                n = robot.dof()
+                "{len} (a floating base: q = (p, quat x y z w, {n} joints), velocities, accelerations and forces = (base twist or wrench, {n} joints){mimic})",
+                n = robot.n_coordinates()
             )
         } else {
-            format!("{len} joints")
+            format!("{len} joints{mimic}")
         }
     };
     let vector = |name: &str, v: Option<Vec<f64>>, len: usize| -> Result<Vec<f64>, String> {

@@ -4,16 +4,36 @@ use super::args::ModelArgs;
 use dynamics_gen::dynamics_model::{shipped, JointKind};
 
 /// `dynamics-gen joints`: one movable joint per line, in vector order (a floating base
-/// first; on a tree each joint says which link it hangs from).
+/// first; on a tree each joint says which link it hangs from), with its index in q (and in
+/// ν on a floating base). A mimic joint has no index: it says which joint it follows.
 pub fn run(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
     let mut width = robot.joints.iter().map(|j| j.name.len()).max().unwrap_or(0);
+    let couplings = robot.couplings();
+    let index = |i: usize| -> String {
+        if robot.joints[i].mimic.is_some() {
+            return "-".into();
+        }
+        let k = couplings[i].coordinate;
+        if robot.base.floating {
+            format!("q[{}] ν[{}]", k + 7, k + 6)
+        } else {
+            format!("q[{k}]")
+        }
+    };
+    let base_index = "q[0..7] ν[0..6]";
+    let index_width = (0..robot.joints.len())
+        .map(|i| index(i).chars().count())
+        .chain(robot.base.floating.then(|| base_index.chars().count()))
+        .max()
+        .unwrap_or(0);
     if robot.base.floating {
         width = width.max("(floating base)".len());
         println!(
-            "{:<width$}  {:<10}  base link `{}`: q[0..7] = (p, quat x y z w), velocity[0..6] = (ω_b, v_b) in the base frame; the joints follow at q[7..], velocity[6..]",
+            "{:<width$}  {:<10}  {:<index_width$}  base link `{}`: q[0..7] = (p, quat x y z w), velocity[0..6] = (ω_b, v_b) in the base frame; the joints follow at q[7..], velocity[6..]",
             "(floating base)",
             "free",
+            base_index,
             robot.base.name
         );
     }
@@ -42,10 +62,20 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
         } else {
             String::new()
         };
+        let follows = match &j.mimic {
+            Some(m) => format!(
+                "  follows `{}` (×{} + {})",
+                robot.joints.get(m.leader).map_or("?", |l| l.name.as_str()),
+                m.multiplier,
+                m.offset
+            ),
+            None => String::new(),
+        };
         println!(
-            "{:<width$}  {:<10}  S = ({})  {limits}{parent}",
+            "{:<width$}  {:<10}  {:<index_width$}  S = ({})  {limits}{parent}{follows}",
             j.name,
             kind,
+            index(i),
             s.join(", ")
         );
     }
