@@ -138,6 +138,18 @@ impl Builder {
         self
     }
 
+    /// Generates only the named functions ([`crate::options::FUNCTIONS`]; default all), for
+    /// smaller code and faster builds. The runtime trait needs `mass_matrix`, `coriolis`,
+    /// `gravity`, `inverse_dynamics` and `forward_dynamics` (or [`Builder::no_runtime_trait`]).
+    pub fn functions<I, S>(mut self, names: I) -> Self
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        self.options.functions = Some(names.into_iter().map(Into::into).collect());
+        self
+    }
+
     /// No `impl dynamics_runtime::Dynamics`: the generated code then needs only nalgebra
     /// (and libm for `no_std`), and the crate no `dynamics-runtime` dependency.
     pub fn no_runtime_trait(mut self) -> Self {
@@ -211,6 +223,9 @@ impl Builder {
         }
         if let Some(frames) = &o.load.frames {
             s += &format!(".frames({frames:?})");
+        }
+        if let Some(functions) = &o.functions {
+            s += &format!(".functions({functions:?})");
         }
         for (joint, value) in &o.load.lock {
             s += &format!(".lock({joint:?}, {value:?})");

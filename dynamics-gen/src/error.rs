@@ -25,6 +25,14 @@ pub enum Error {
         /// The path given.
         path: String,
     },
+    /// A `functions` selection that cannot be generated.
+    #[error("functions: {problem}; fix: {fix} (--functions / .functions() / functions(..))")]
+    InvalidFunctions {
+        /// What is wrong.
+        problem: String,
+        /// The fix.
+        fix: String,
+    },
     /// The robot has no movable joint.
     #[error("robot `{robot}` has no movable joint: there are no dynamics to generate")]
     NoJoints {

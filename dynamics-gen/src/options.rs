@@ -50,7 +50,28 @@ pub struct Options {
     pub runtime_path: Option<String>,
     /// Loader options (gravity override, URDF tip and locked joints).
     pub load: LoadOptions,
+    /// The functions to generate, by name ([`FUNCTIONS`]); `None`: all of them.
+    pub functions: Option<Vec<String>>,
 }
+
+/// Every function the generator can emit, in the order of the generated `impl`. The
+/// `frame_*` ones exist only for a robot with named frames; the runtime trait needs the first
+/// five.
+pub const FUNCTIONS: &[&str] = &[
+    "mass_matrix",
+    "coriolis",
+    "gravity",
+    "inverse_dynamics",
+    "forward_dynamics",
+    "kinetic_energy",
+    "potential_energy",
+    "end_effector_pose",
+    "jacobian_space",
+    "jacobian_body",
+    "frame_poses",
+    "frame_jacobians_space",
+    "frame_jacobians_body",
+];
 
 impl Default for Options {
     fn default() -> Self {
@@ -61,6 +82,7 @@ impl Default for Options {
             nalgebra_path: "::nalgebra".into(),
             runtime_path: Some("::dynamics_runtime".into()),
             load: LoadOptions::default(),
+            functions: None,
         }
     }
 }

@@ -143,6 +143,8 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ops: k.graph.op_counts(roots),
         lines: function_lines(code, name),
     }));
+    // Only what was generated (a `functions` selection leaves some out).
+    functions.retain(|f| code.contains(&format!("fn {}(", f.name)));
     let nv = d.nv;
     // Structural zeros: off-diagonal zeros that the tree explains (dofs on different
     // branches), not zeros that happen to fold.

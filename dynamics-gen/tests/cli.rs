@@ -492,3 +492,44 @@ fn mimic_joints_in_joints_and_eval() {
         "{err}"
     );
 }
+
+#[test]
+fn functions_selects_what_is_generated() {
+    let all = text(&run(&["generate", "ur5"]).stdout);
+    let some = run(&[
+        "generate",
+        "ur5",
+        "--functions",
+        "gravity,jacobian_body",
+        "--no-runtime-trait",
+    ]);
+    assert!(some.status.success(), "{}", text(&some.stderr));
+    let some = text(&some.stdout);
+    assert!(some.contains("pub fn gravity(") && some.contains("pub fn jacobian_body("));
+    for gone in [
+        "fn mass_matrix(",
+        "fn forward_dynamics(",
+        "fn jacobian_space(",
+        "impl ::dynamics_runtime",
+    ] {
+        assert!(all.contains(gone) && !some.contains(gone), "{gone}");
+    }
+    assert!(
+        some.contains("functions `gravity`, `jacobian_body`"),
+        "header records it"
+    );
+    assert!(some.contains("--functions gravity,jacobian_body --no-runtime-trait"));
+    assert!(some.lines().count() * 4 < all.lines().count());
+    let cases = [
+        (vec!["--functions", "gravity"], "the dynamics_runtime::Dynamics impl needs mass_matrix, coriolis, inverse_dynamics, forward_dynamics"),
+        (vec!["--functions", "jacobian", "--no-runtime-trait"], "there is no generated function `jacobian`; fix: choose among mass_matrix"),
+        (vec!["--functions", "frame_poses", "--no-runtime-trait"], "`frame_poses` needs named frames, and the robot has none"),
+    ];
+    for (extra, message) in cases {
+        let mut argv = vec!["generate", "ur5"];
+        argv.extend(extra);
+        let out = run(&argv);
+        assert_eq!(out.status.code(), Some(1));
+        assert!(text(&out.stderr).contains(message), "{}", text(&out.stderr));
+    }
+}

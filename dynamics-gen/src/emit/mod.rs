@@ -228,6 +228,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #kinematics_fns
         }
     };
+    let impl_block = select_functions(impl_block, &robot, options)?;
     let impl_block = match &runtime {
         None => impl_block,
         Some(runtime) => {
@@ -251,6 +252,61 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         kinematics,
         robot,
     })
+}
+
+/// The impl block with only the functions of `options.functions` (all when `None`), after
+/// checking the selection: known names, frame functions only with named frames, and the
+/// five functions of the runtime trait when it is implemented.
+fn select_functions(
+    impl_block: TokenStream,
+    robot: &Robot,
+    options: &Options,
+) -> Result<TokenStream, Error> {
+    let Some(selected) = &options.functions else {
+        return Ok(impl_block);
+    };
+    let known = crate::options::FUNCTIONS;
+    let list = || known.join(", ");
+    for name in selected {
+        if !known.contains(&name.as_str()) {
+            return Err(Error::InvalidFunctions {
+                problem: format!("there is no generated function {}", inert(name)),
+                fix: format!("choose among {}", list()),
+            });
+        }
+        if name.starts_with("frame_") && robot.frames.is_empty() {
+            return Err(Error::InvalidFunctions {
+                problem: format!("`{name}` needs named frames, and the robot has none"),
+                fix: "name the frames (--frame LINK, .frames(..), frames(..), TOML [[frame]]) or leave it out".into(),
+            });
+        }
+    }
+    if options.runtime_path.is_some() {
+        let missing: Vec<&str> = known[..5]
+            .iter()
+            .copied()
+            .filter(|f| !selected.iter().any(|s| s == f))
+            .collect();
+        if !missing.is_empty() {
+            return Err(Error::InvalidFunctions {
+                problem: format!(
+                    "the dynamics_runtime::Dynamics impl needs {}, which the selection leaves out",
+                    missing.join(", ")
+                ),
+                fix: "add them, or leave the trait out (--no-runtime-trait, .no_runtime_trait(), no_runtime_trait)".into(),
+            });
+        }
+    }
+    let mut item: syn::ItemImpl = syn::parse2(impl_block)
+        .map_err(|e| Error::Internal(format!("generated impl does not parse: {e}")))?;
+    item.items.retain(|it| match it {
+        syn::ImplItem::Fn(f) => {
+            let name = f.sig.ident.to_string();
+            !known.contains(&name.as_str()) || selected.contains(&name)
+        }
+        _ => true,
+    });
+    Ok(quote!(#item))
 }
 
 /// `end_effector_pose`, `jacobian_space`, `jacobian_body`, and for named frames

@@ -173,6 +173,10 @@ fn describe(generated: &Generated, options: &Options) -> String {
             }
         ));
     }
+    if let Some(functions) = &options.functions {
+        let names: Vec<String> = functions.iter().map(|f| inert(f)).collect();
+        parts.push(format!("functions {}", names.join(", ")));
+    }
     if !options.load.lock.is_empty() {
         let locks: Vec<String> = options
             .load

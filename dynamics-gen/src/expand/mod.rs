@@ -18,7 +18,8 @@
 //! geometry, where the articulated inertias' 21 entries cost more to move from frame to
 //! frame; the articulated-body algorithm grows as n and needs one division fewer (the last
 //! `D_n` is a constant). At the time of writing the articulated-body algorithm wins on the
-//! two-joint pendulum, the UR5 and 12-joint random chains, LDLᵀ on the Panda and rand7.
+//! two-joint pendulum and 12-joint random chains, the factorisation on the UR5, the Panda
+//! and rand7.
 //! Likewise each Newton–Euler expansion keeps the cheapest of three equal forms.
 //!
 //! Before the routes are compared, the graph is rebuilt by [`ExprGraph::prune_zeros`] from

@@ -89,6 +89,17 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     let lit: syn::LitStr = meta.value()?.parse()?;
                     attr.options.load.tip = Some(lit.value());
                 }
+                "functions" => {
+                    let mut names = Vec::new();
+                    meta.parse_nested_meta(|inner| match inner.path.get_ident() {
+                        Some(f) => {
+                            names.push(f.to_string());
+                            Ok(())
+                        }
+                        None => Err(inner.error("expected function names: `functions(mass_matrix, gravity)`")),
+                    })?;
+                    attr.options.functions = Some(names);
+                }
                 "frames" => {
                     let mut links = Vec::new();
                     meta.parse_nested_meta(|inner| {
@@ -132,7 +143,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), lock(JOINT = VALUE, ..), method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

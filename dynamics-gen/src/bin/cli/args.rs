@@ -104,6 +104,12 @@ pub struct GenerateArgs {
     /// No `impl dynamics_runtime::Dynamics`: the code then needs only nalgebra (and libm).
     #[arg(long)]
     pub no_runtime_trait: bool,
+    /// Generate only these functions (comma-separated or repeated; default all): mass_matrix,
+    /// coriolis, gravity, inverse_dynamics, forward_dynamics, kinetic_energy, potential_energy,
+    /// end_effector_pose, jacobian_space, jacobian_body, frame_poses, frame_jacobians_space,
+    /// frame_jacobians_body. The runtime trait needs the first five (or --no-runtime-trait).
+    #[arg(long, value_name = "FN[,FN...]", value_delimiter = ',')]
+    pub functions: Vec<String>,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

@@ -16,6 +16,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         nalgebra_path: args.nalgebra_path.clone(),
         runtime_path: (!args.no_runtime_trait).then(|| args.runtime_path.clone()),
         load: args.model.load_options(),
+        functions: (!args.functions.is_empty()).then(|| args.functions.clone()),
     };
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
@@ -73,6 +74,9 @@ fn command(args: &GenerateArgs) -> String {
     }
     if args.nalgebra_path != Options::default().nalgebra_path {
         words.extend(["--nalgebra-path".into(), quote(&args.nalgebra_path)]);
+    }
+    if !args.functions.is_empty() {
+        words.extend(["--functions".into(), quote(&args.functions.join(","))]);
     }
     if args.no_runtime_trait {
         words.push("--no-runtime-trait".into());

@@ -20,6 +20,16 @@ pub struct Solo;
 )]
 pub struct SoloFeet;
 
+// Only what a foot-contact controller needs: smaller code, faster builds.
+#[derive(Dynamics)]
+#[dynamics(
+    file = "tests/data/robots/trees/solo12.urdf",
+    floating_base,
+    functions(gravity, frame_poses, frame_jacobians_body),
+    no_runtime_trait
+)]
+pub struct SoloContacts;
+
 fn main() {
     assert_eq!((TwoArms::NQ, TwoArms::NV), (TwoArms::DOF, TwoArms::DOF));
     assert_eq!((Solo::DOF, Solo::NQ, Solo::NV), (12, 19, 18));
@@ -40,6 +50,9 @@ fn main() {
     let feet = SoloFeet.frame_poses(&q);
     assert!(feet.iter().all(|f| f.translation.z < -0.1));
     assert!(feet[0].translation.x < 0.0 && feet[1].translation.x > 0.0);
+    let contacts = SoloContacts.frame_jacobians_body(&q);
+    assert_eq!(contacts.len(), 4);
+    assert_eq!(SoloContacts.gravity(&q), g);
     let j = SoloFeet.frame_jacobians_body(&q);
     assert!((0..6).all(|c| j[1].column(c).norm() > 0.0));
     assert!((9..18).all(|c| j[1].column(c).norm() == 0.0)); // not on the front-left leg
