@@ -121,6 +121,11 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ops: d.graph.op_counts(&[d.kinetic_energy]),
         lines: function_lines(code, "kinetic_energy"),
     });
+    functions.push(FunctionStats {
+        name: "mass_matrix_dot",
+        ops: d.graph.op_counts(&d.mass_matrix_dot),
+        lines: function_lines(code, "mass_matrix_dot"),
+    });
     let k = &generated.kinematics;
     let all = |f: fn(&FrameKinematics) -> &Vec<ExprId>| -> Vec<ExprId> {
         k.frames.iter().flat_map(|x| f(x).iter().copied()).collect()
@@ -130,6 +135,8 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ("end_effector_pose", k.end_effector.pose.clone()),
         ("jacobian_space", k.end_effector.jacobian_space.clone()),
         ("jacobian_body", k.end_effector.jacobian_body.clone()),
+        ("jacobian_space_dot", k.jacobian_space_dot.clone()),
+        ("jacobian_body_dot", k.jacobian_body_dot.clone()),
     ];
     if !k.frames.is_empty() {
         kinematics.extend([
@@ -260,7 +267,7 @@ mod tests {
     fn pendulum_mass_matrix_depends_on_q2_only() {
         let robot = dynamics_model::load("pendulum", &Default::default()).unwrap();
         let s = robot_stats(&robot, &Options::default()).unwrap();
-        assert_eq!(s.functions.len(), 10);
+        assert_eq!(s.functions.len(), 13);
         assert_eq!(s.dof, 2);
         // M(q) of a serial chain never depends on q_1: only q_2 needs a sin/cos.
         assert_eq!(s.functions[0].name, "mass_matrix");
@@ -268,6 +275,6 @@ mod tests {
         // Forward dynamics divides by the LDLᵀ pivots.
         assert!(s.functions[4].ops.div >= 1);
         assert!(s.functions.iter().all(|f| f.lines > 0));
-        assert_eq!(s.to_string().lines().count(), 11);
+        assert_eq!(s.to_string().lines().count(), 14);
     }
 }

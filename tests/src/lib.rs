@@ -105,6 +105,12 @@ pub trait GeneratedDynamics: Sync {
     fn kinetic_energy(&self, q: &[f64], qd: &[f64]) -> f64;
     /// `P(q)`.
     fn potential_energy(&self, q: &[f64]) -> f64;
+    /// `Ṁ(q, q̇)`.
+    fn mass_matrix_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64>;
+    /// `J̇_s(q, q̇)`.
+    fn jacobian_space_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64>;
+    /// `J̇_b(q, q̇)`.
+    fn jacobian_body_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64>;
     /// `T_{0,n+1}(q)` as a homogeneous matrix.
     fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64>;
     /// `J_s(q)`, 6×nv.
@@ -224,6 +230,18 @@ macro_rules! adapter {
             }
             fn potential_energy(&self, q: &[f64]) -> f64 {
                 $m::Robot::potential_energy(self, &to_s::<$s, $nq>(q)).to_f64()
+            }
+            fn mass_matrix_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
+                let m = $m::Robot::mass_matrix_dot(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));
+                DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64)
+            }
+            fn jacobian_space_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
+                let j = $m::Robot::jacobian_space_dot(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));
+                DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
+            }
+            fn jacobian_body_dot(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
+                let j = $m::Robot::jacobian_body_dot(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));
+                DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
             }
             fn end_effector_pose(&self, q: &[f64]) -> Matrix4<f64> {
                 homogeneous(&$m::Robot::end_effector_pose(self, &to_s::<$s, $nq>(q)))

@@ -214,3 +214,56 @@ fn generated_energies_satisfy_the_identities() {
     }
     println!("energy identities: worst relative error {worst:e}");
 }
+
+/// `Ṁ` against the reference's `mass_matrix_dot` (same tolerances as M), and `J̇_s`, `J̇_b`
+/// against central differences of the generated `jacobian_space`, `jacobian_body` along the
+/// configuration rate (`q ± h q̇`, q̇ from `configuration_rate`, so quaternions included; f64,
+/// 1e-6 relative).
+#[test]
+fn generated_time_derivatives_are_the_derivatives() {
+    let (mut worst_m, mut worst_j) = ([0.0f64; 2], 0.0f64);
+    for case in CASES {
+        let robot = case.spec.robot();
+        let f32 = case.scalar == "f32";
+        let round = |x: f64| if f32 { x as f32 as f64 } else { x };
+        let (rtol, atol) = if f32 { (1e-4, 0.0) } else { (1e-10, 1e-12) };
+        let mut rng = Rng::new(13);
+        for _ in 0..3 {
+            let q: Vec<f64> = (0..robot.nq())
+                .map(|_| round(rng.uniform(-3.0, 3.0)))
+                .collect();
+            let qd: Vec<f64> = (0..robot.nv())
+                .map(|_| round(rng.uniform(-2.0, 2.0)))
+                .collect();
+            let m_dot = dynamics_reference::mass_matrix_dot(&robot, &q, &qd);
+            let ours = case.imp.mass_matrix_dot(&q, &qd);
+            let err = check(case, "Ṁ", ours.as_slice(), m_dot.as_slice(), rtol, atol);
+            worst_m[usize::from(f32)] = worst_m[usize::from(f32)].max(err);
+            if f32 {
+                continue;
+            }
+            let rate = dynamics_reference::configuration_rate(&robot, &q, &qd);
+            let h = 1e-6;
+            let at = |s: f64| -> Vec<f64> {
+                q.iter().zip(rate.iter()).map(|(x, r)| x + s * r).collect()
+            };
+            let (a, b) = (at(h), at(-h));
+            let fd = |f: &dyn Fn(&[f64]) -> nalgebra::DMatrix<f64>| (f(&a) - f(&b)) / (2.0 * h);
+            let js = fd(&|x| case.imp.jacobian_space(x));
+            let jb = fd(&|x| case.imp.jacobian_body(x));
+            let scale = |j: &nalgebra::DMatrix<f64>| j.amax() + case.imp.jacobian_space(&q).amax();
+            let ours = case.imp.jacobian_space_dot(&q, &qd);
+            let err = (&ours - &js).amax() / scale(&js);
+            assert!(err < 1e-6, "{} J̇_s: {err:e}", case.module);
+            worst_j = worst_j.max(err);
+            let ours = case.imp.jacobian_body_dot(&q, &qd);
+            let err = (&ours - &jb).amax() / scale(&jb);
+            assert!(err < 1e-6, "{} J̇_b: {err:e}", case.module);
+            worst_j = worst_j.max(err);
+        }
+    }
+    println!(
+        "Ṁ vs reference: worst relative f64 {:e}, f32 {:e}; J̇ (f64) vs central differences: worst relative {worst_j:e}",
+        worst_m[0], worst_m[1]
+    );
+}

@@ -48,6 +48,9 @@ macro_rules! no_alloc {
             black_box(Robot.forward_dynamics(black_box(&q), black_box(&qd), black_box(&x)));
             black_box(Robot.kinetic_energy(black_box(&q), black_box(&qd)));
             black_box(Robot.potential_energy(black_box(&q)));
+            black_box(Robot.mass_matrix_dot(black_box(&q), black_box(&qd)));
+            black_box(Robot.jacobian_space_dot(black_box(&q), black_box(&qd)));
+            black_box(Robot.jacobian_body_dot(black_box(&q), black_box(&qd)));
             black_box(Robot.end_effector_pose(black_box(&q)));
             black_box(Robot.jacobian_space(black_box(&q)));
             black_box(Robot.jacobian_body(black_box(&q)));

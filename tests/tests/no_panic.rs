@@ -62,6 +62,18 @@ mod release {
                     Robot.potential_energy(q)
                 }
                 #[no_panic]
+                pub fn mass_matrix_dot(q: &Q, qd: &V) -> SMatrix<$s, $nv, $nv> {
+                    Robot.mass_matrix_dot(q, qd)
+                }
+                #[no_panic]
+                pub fn jacobian_space_dot(q: &Q, qd: &V) -> SMatrix<$s, 6, $nv> {
+                    Robot.jacobian_space_dot(q, qd)
+                }
+                #[no_panic]
+                pub fn jacobian_body_dot(q: &Q, qd: &V) -> SMatrix<$s, 6, $nv> {
+                    Robot.jacobian_body_dot(q, qd)
+                }
+                #[no_panic]
                 pub fn end_effector_pose(q: &Q) -> nalgebra::Isometry3<$s> {
                     Robot.end_effector_pose(q)
                 }
@@ -85,6 +97,9 @@ mod release {
                     let js = jacobian_space(&q);
                     let jb = jacobian_body(&q);
                     let e = kinetic_energy(&q, &v) + potential_energy(&q);
+                    let e = e + mass_matrix_dot(&q, &v)[(0, 0)];
+                    let e =
+                        e + jacobian_space_dot(&q, &v)[(5, 0)] + jacobian_body_dot(&q, &v)[(5, 0)];
                     m[(0, 0)] + c[0] + g[0] + a[0] + p.translation.x + js[(5, 0)] + jb[(5, 0)] + e
                 }
             }

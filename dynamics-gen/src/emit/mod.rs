@@ -122,7 +122,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let forward = body(&dynamics.forward_dynamics, &[q.clone(), qd.clone(), tau], 1);
     let kinetic = FunctionBody {
         graph: &dynamics.graph,
-        args: &[q.clone(), qd],
+        args: &[q.clone(), qd.clone()],
         outputs: &[dynamics.kinetic_energy],
         rows: 1,
         cols: 1,
@@ -132,8 +132,13 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         nalgebra: &nalgebra,
     }
     .tokens();
+    let mass_matrix_dot = body(
+        &dynamics.mass_matrix_dot,
+        &[q.clone(), qd.clone()],
+        nv_usize,
+    );
     let kinematics = expand_kinematics(&robot);
-    let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &q);
+    let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &[q, qd]);
     let names: Vec<&str> = robot.joint_names();
     let units = unit_doc(&robot);
     let gravity_doc = format!(
@@ -223,6 +228,17 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[must_use]
             pub fn kinetic_energy(&self, q: &#q_ty, qd: &#vec_ty) -> #scalar {
                 #kinetic
+            }
+
+            /// The time derivative `Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k` of the mass matrix (Modern
+            /// Robotics Exercise 8.7): the exact symbolic derivative of `mass_matrix`, so that
+            /// `Ṁ − 2C` is skew-symmetric for the Christoffel `C`.
+            #[doc = ""]
+            #[doc = #units]
+            #[inline]
+            #[must_use]
+            pub fn mass_matrix_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #mat_ty {
+                #mass_matrix_dot
             }
 
             #kinematics_fns
@@ -317,8 +333,9 @@ fn kinematics_functions(
     robot: &Robot,
     options: &Options,
     nalgebra: &TokenStream,
-    q: &Arg,
+    args: &[Arg; 2],
 ) -> TokenStream {
+    let q = &args[0];
     let nv_usize = robot.nv();
     let nv = proc_macro2::Literal::usize_unsuffixed(nv_usize);
     let nq = proc_macro2::Literal::usize_unsuffixed(robot.nq());
@@ -341,6 +358,23 @@ fn kinematics_functions(
         .tokens()
     };
     let ee = &k.end_effector;
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
+    let dot = |outputs: &[crate::expr::ExprId]| {
+        FunctionBody {
+            graph: &k.graph,
+            args,
+            outputs,
+            rows: 6,
+            cols: nv_usize,
+            output: Output::Matrix,
+            scalar: options.scalar,
+            no_std: options.no_std,
+            nalgebra,
+        }
+        .tokens()
+    };
+    let j_s_dot = dot(&k.jacobian_space_dot);
+    let j_b_dot = dot(&k.jacobian_body_dot);
     let pose = body(&ee.pose, 0, 0, Output::Pose);
     let j_s = body(&ee.jacobian_space, 6, nv_usize, Output::Matrix);
     let j_b = body(&ee.jacobian_body, 6, nv_usize, Output::Matrix);
@@ -405,6 +439,29 @@ fn kinematics_functions(
         #[must_use]
         pub fn jacobian_body(&self, q: &#q_ty) -> #jac_ty {
             #j_b
+        }
+
+        /// The time derivative `J̇_s(q, q̇)` of [`Self::jacobian_space`]: the exact symbolic
+        /// derivative along `q̇` (Modern Robotics Exercise 8.6), so that the end effector's
+        /// spatial acceleration is `J_s q̈ + J̇_s q̇`.
+        #[doc = ""]
+        #[doc = #ee_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn jacobian_space_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #jac_ty {
+            #j_s_dot
+        }
+
+        /// The time derivative `J̇_b(q, q̇)` of [`Self::jacobian_body`] (Modern Robotics
+        /// Exercise 8.6): `V̇_b = J_b q̈ + J̇_b q̇`.
+        #[doc = ""]
+        #[doc = #ee_doc]
+        #base_doc
+        #[inline]
+        #[must_use]
+        pub fn jacobian_body_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #jac_ty {
+            #j_b_dot
         }
     };
     let nf_usize = robot.frames.len();

@@ -19,7 +19,7 @@
 use super::rnea::BaseMotion;
 use super::spatial::{Spatial, VectorOps, V3};
 use super::{input, Q};
-use crate::expr::{ExprGraph, ExprId};
+use crate::expr::{ExprGraph, ExprId, Input};
 
 /// Index of the quaternion's first entry (x) in q.
 pub const QUAT: usize = 3;
@@ -112,4 +112,43 @@ pub fn base_motion(
         vd.lin = g.sub3(vd.lin, gb);
     }
     BaseMotion { v, vd }
+}
+
+/// The time derivatives of the `q` inputs as graph tangents (for [`ExprGraph::jvp`]), from
+/// the velocity inputs `ν` (group [`super::QD`]); `k` joint coordinates. On a fixed base
+/// `θ̇ = ν`. On a floating base (as `dynamics_reference::configuration_rate`):
+///
+/// ```text
+/// ṗ = R v_b,    quaṫ = ½ quat ⊗ (ω_b, 0) = ½ (w ω_b + u × ω_b, −u · ω_b),    θ̇
+/// ```
+///
+/// with `quat = (u, w)` as given (this rate keeps `|quat|`, and `quat/|quat|` follows
+/// `Ṙ = R [ω_b]` exactly, so the derivative of anything built on the normalised quaternion is
+/// right for any non-zero length).
+pub fn configuration_rate(g: &mut ExprGraph, floating: bool, k: usize) -> Vec<(Input, ExprId)> {
+    let qd = |g: &mut ExprGraph, i: usize| g.input(input(super::QD, i));
+    if !floating {
+        return (0..k).map(|i| (input(Q, i), qd(g, i))).collect();
+    }
+    let r = base_rotation(g);
+    let w: V3 = std::array::from_fn(|i| qd(g, i));
+    let v: V3 = std::array::from_fn(|i| qd(g, 3 + i));
+    let mut out = Vec::with_capacity(NQ_BASE + k);
+    for (i, row) in r.iter().enumerate() {
+        let terms: Vec<ExprId> = (0..3).map(|j| g.mul(row[j], v[j])).collect();
+        out.push((input(Q, i), g.sum(&terms)));
+    }
+    let u: V3 = std::array::from_fn(|i| g.input(input(Q, QUAT + i)));
+    let qw = g.input(input(Q, QUAT + 3));
+    let wu = g.scale3(qw, w);
+    let uxw = g.cross(u, w);
+    let sum = g.add3(wu, uxw);
+    for (i, x) in sum.into_iter().enumerate() {
+        out.push((input(Q, QUAT + i), g.cmul(0.5, x)));
+    }
+    let dots: Vec<ExprId> = (0..3).map(|i| g.mul(u[i], w[i])).collect();
+    let dot = g.sum(&dots);
+    out.push((input(Q, QUAT + 3), g.cmul(-0.5, dot)));
+    out.extend((0..k).map(|i| (input(Q, NQ_BASE + i), qd(g, NV_BASE + i))));
+    out
 }

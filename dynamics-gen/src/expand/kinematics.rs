@@ -63,6 +63,11 @@ pub struct Kinematics {
     pub graph: ExprGraph,
     /// The end-effector frame {n+1}.
     pub end_effector: FrameKinematics,
+    /// `J̇_s(q, ν)` of the end effector: the directional derivative of its `jacobian_space`
+    /// along the configuration rate ([`super::base::configuration_rate`]; inputs `q` and `ν`).
+    pub jacobian_space_dot: Vec<ExprId>,
+    /// `J̇_b(q, ν)` of the end effector, likewise.
+    pub jacobian_body_dot: Vec<ExprId>,
     /// [`Robot::frames`], in order.
     pub frames: Vec<FrameKinematics>,
     /// `P(q) = −gᵀ Σ_i (m_i p_i + R_i h_i)`: the potential energy, every link's mass `m_i` and
@@ -216,9 +221,14 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
     let end_effector = one(&robot.end_effector);
     let named = robot.frames.iter().map(&mut one).collect();
     let potential_energy = potential_energy(&mut g, robot, &frames, &poses, base);
+    let rate = super::base::configuration_rate(&mut g, floating, robot.n_coordinates());
+    let jacobian_space_dot = g.jvp(&end_effector.jacobian_space, &rate);
+    let jacobian_body_dot = g.jvp(&end_effector.jacobian_body, &rate);
     Kinematics {
         graph: g,
         end_effector,
+        jacobian_space_dot,
+        jacobian_body_dot,
         frames: named,
         potential_energy,
     }

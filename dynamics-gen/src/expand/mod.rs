@@ -106,6 +106,9 @@ pub struct Dynamics {
     /// `K(q, ν) = ½ νᵀ M ν = Σ_i ν_i (½ M_ii ν_i + Σ_{j>i} M_ij ν_j)`, on the mass matrix's
     /// nodes.
     pub kinetic_energy: ExprId,
+    /// `Ṁ(q, ν) = Σ_k ∂M/∂q_k q̇_k`: the directional derivative of `mass_matrix`'s graph
+    /// along the configuration rate ([`base::configuration_rate`]), nv×nv row-major.
+    pub mass_matrix_dot: Vec<ExprId>,
 }
 
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
@@ -265,6 +268,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     };
     let mut g = g;
     let kinetic_energy = kinetic_energy(&mut g, &mass_matrix, nv);
+    let rate = base::configuration_rate(&mut g, floating, k);
+    let mass_matrix_dot = g.jvp(&mass_matrix, &rate);
     Dynamics {
         graph: g,
         dof: k,
@@ -277,6 +282,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         forward_dynamics,
         forward_route: route,
         kinetic_energy,
+        mass_matrix_dot,
     }
 }
 

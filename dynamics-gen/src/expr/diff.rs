@@ -16,6 +16,22 @@ impl ExprGraph {
     /// `∂f/∂x` for every `f` in `fs`, sharing one memo (so common
     /// sub-expressions of the `fs` are differentiated once).
     pub fn diff_many(&mut self, fs: &[ExprId], x: Input) -> Vec<ExprId> {
+        // Independent of x: zeros, without adding the seed's 1 to the graph.
+        let depends = self
+            .find_input(x)
+            .is_some_and(|id| self.live(fs)[id.index()]);
+        if !depends {
+            let zero = self.zero();
+            return vec![zero; fs.len()];
+        }
+        let one = self.one();
+        self.jvp(fs, &[(x, one)])
+    }
+
+    /// The directional derivative (Jacobian-vector product) `Σ_x ∂f/∂x · ẋ` of every `f` in
+    /// `fs`, for the tangents `seeds` = `(x, ẋ)` (expressions of the graph; inputs not listed
+    /// have tangent 0). With `ẋ` the time derivatives of the inputs this is `df/dt`.
+    pub fn jvp(&mut self, fs: &[ExprId], seeds: &[(Input, ExprId)]) -> Vec<ExprId> {
         let live = self.live(fs);
         // Only nodes older than the newest root matter; derivative nodes are
         // appended behind them and never need derivatives themselves.
@@ -29,7 +45,7 @@ impl ExprGraph {
             // Dead nodes get a placeholder that is never read (live nodes
             // only have live operands).
             let di = if live[i] {
-                self.diff_node(id, x, &d)
+                self.diff_node(id, seeds, &d)
             } else {
                 id
             };
@@ -39,7 +55,7 @@ impl ExprGraph {
     }
 
     /// Derivative of node `id` given the derivatives `d` of all older nodes.
-    fn diff_node(&mut self, id: ExprId, x: Input, d: &[ExprId]) -> ExprId {
+    fn diff_node(&mut self, id: ExprId, seeds: &[(Input, ExprId)], d: &[ExprId]) -> ExprId {
         let dd = |a: ExprId| d[a.index()];
         let node = *self.node(id);
         // Constant with respect to x: build nothing (not even cos(a) for sin).
@@ -48,13 +64,10 @@ impl ExprGraph {
         }
         match node {
             Node::Const(_) => self.zero(),
-            Node::Input(y) => {
-                if y == x {
-                    self.one()
-                } else {
-                    self.zero()
-                }
-            }
+            Node::Input(y) => match seeds.iter().find(|(x, _)| *x == y) {
+                Some(&(_, t)) => t,
+                None => self.zero(),
+            },
             Node::Neg(a) => self.neg(dd(a)),
             Node::Add(a, b) => self.add(dd(a), dd(b)),
             Node::Sub(a, b) => self.sub(dd(a), dd(b)),
