@@ -311,6 +311,27 @@ pub use generated::CASES;
 
 include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
 
+/// The values of `roots` of an expanded graph with the inputs `q`, `q̇`, `q̈` and `τ` (groups
+/// `Q`, `QD`, `QDD`, `TAU`).
+pub fn eval_graph(
+    graph: &dynamics_gen::expr::ExprGraph,
+    roots: &[dynamics_gen::expr::ExprId],
+    state: [&[f64]; 4],
+) -> Vec<f64> {
+    use dynamics_gen::expand::{Q, QD, QDD, TAU};
+    let [q, qd, qdd, tau] = state;
+    graph.eval(roots, &|x: dynamics_gen::expr::Input| {
+        let i = x.index as usize;
+        match x.group {
+            Q => q[i],
+            QD => qd[i],
+            QDD => qdd[i],
+            TAU => tau[i],
+            _ => f64::NAN,
+        }
+    })
+}
+
 /// `(‖x − y‖∞, ‖y‖∞)`.
 pub fn max_error(x: &[f64], y: &[f64]) -> (f64, f64) {
     assert_eq!(x.len(), y.len(), "sizes differ");

@@ -2,8 +2,8 @@
 //! and inertias) expanded symbolically and evaluated through the expression graph, against
 //! the reference implementation: ‖x − y‖∞ ≤ 1e-10·‖y‖∞ + 1e-12.
 
-use dynamics_gen::expand::{expand, Q, QD, QDD, TAU};
-use dynamics_gen::expr::{ExprId, Input};
+use dynamics_gen::expand::expand;
+use dynamics_gen::expr::ExprId;
 use dynamics_model::random::{random_chain, ChainSpec, Rng};
 use nalgebra::Vector6;
 
@@ -52,16 +52,7 @@ fn random_chains_through_the_graph_equal_the_reference() {
         let z = Vector6::zeros();
         let tau = dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &z);
         let eval = |roots: &[ExprId]| {
-            d.graph.eval(roots, &|x: Input| {
-                let i = x.index as usize;
-                match x.group {
-                    Q => q[i],
-                    QD => qd[i],
-                    QDD => qdd[i],
-                    TAU => tau[i],
-                    _ => f64::NAN,
-                }
-            })
+            dynamics_tests::eval_graph(&d.graph, roots, [&q, &qd, &qdd, tau.as_slice()])
         };
         let m_ref = dynamics_reference::mass_matrix(&robot, &q);
         let m_row: Vec<f64> = m_ref.transpose().as_slice().to_vec();

@@ -4,8 +4,8 @@
 //! implementation: ‖x − y‖∞ ≤ 1e-9·‖y‖∞ + 1e-12 for M, c, g, τ and forward dynamics. Each
 //! tree's structural zeros of M are exact zeros of the graph.
 
-use dynamics_gen::expand::{expand, Q, QD, QDD, TAU};
-use dynamics_gen::expr::{ExprId, Input};
+use dynamics_gen::expand::expand;
+use dynamics_gen::expr::ExprId;
 use dynamics_model::random::{random_tree, Rng, TreeSpec};
 use nalgebra::Vector6;
 
@@ -54,16 +54,7 @@ fn random_trees_through_the_graph_equal_the_reference() {
         let z = Vector6::zeros();
         let tau = dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &z);
         let eval = |roots: &[ExprId]| {
-            d.graph.eval(roots, &|x: Input| {
-                let i = x.index as usize;
-                match x.group {
-                    Q => q[i],
-                    QD => qd[i],
-                    QDD => qdd[i],
-                    TAU => tau[i],
-                    _ => f64::NAN,
-                }
-            })
+            dynamics_tests::eval_graph(&d.graph, roots, [&q, &qd, &qdd, tau.as_slice()])
         };
         let m_ref = dynamics_reference::mass_matrix(&robot, &q);
         let m_row: Vec<f64> = m_ref.transpose().as_slice().to_vec();
