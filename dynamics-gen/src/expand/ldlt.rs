@@ -14,11 +14,19 @@ use crate::expr::{ExprGraph, ExprId};
 /// Solves `M x = b` symbolically; `m` is n×n row-major and symmetric (only the lower
 /// triangle is read).
 pub fn ldlt_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
-    let n = b.len();
+    let (l, _, inv_d) = ldlt_factor(g, m);
+    ldlt_apply(g, &l, &inv_d, b)
+}
+
+/// The factorisation `M = L D Lᵀ` of [`ldlt_solve`]: `L` (n×n row-major, strictly lower
+/// triangle set, the rest 0), `D` and `1 / D_j`.
+pub fn ldlt_factor(g: &mut ExprGraph, m: &[ExprId]) -> (Vec<ExprId>, Vec<ExprId>, Vec<ExprId>) {
+    let n = m.len().isqrt();
     let zero = g.zero();
     let one = g.one();
     let mut l = vec![zero; n * n];
     let mut inv_d = vec![one; n];
+    let mut diag = vec![zero; n];
     for j in 0..n {
         // Y_jk = L_jk D_k for k < j is kept in y_row to save multiplications.
         let mut d = m[j * n + j];
@@ -37,8 +45,15 @@ pub fn ldlt_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> 
             let t = g.mul(l[j * n + k], y_row[k]);
             d = g.sub(d, t);
         }
+        diag[j] = d;
         inv_d[j] = g.div(one, d);
     }
+    (l, diag, inv_d)
+}
+
+/// `x = M⁻¹ b` from the factors of [`ldlt_factor`]: `L z = b`, `y = D⁻¹ z`, `Lᵀ x = y`.
+pub fn ldlt_apply(g: &mut ExprGraph, l: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
+    let n = b.len();
     // Forward substitution L z = b.
     let mut z = b.to_vec();
     for i in 0..n {
@@ -71,7 +86,15 @@ pub fn ldlt_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> 
 /// already: no fill-in, so the structural zeros of `M` (exact zeros in the graph) stay zero
 /// and cost nothing. `m` is n×n row-major and symmetric (only the lower triangle is read).
 pub fn ltdl_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
-    let n = b.len();
+    let (h, inv_d) = ltdl_factor(g, m);
+    ltdl_apply(g, &h, &inv_d, b)
+}
+
+/// The factorisation `M = Lᵀ D L` of [`ltdl_solve`]: `L` (n×n row-major; its strictly lower
+/// triangle is `L`, the rest is `M`'s lower triangle's leftovers and must not be read) and
+/// `1 / D_k`.
+pub fn ltdl_factor(g: &mut ExprGraph, m: &[ExprId]) -> (Vec<ExprId>, Vec<ExprId>) {
+    let n = m.len().isqrt();
     let zero = g.zero();
     let one = g.one();
     // The lower triangle, overwritten by L below the diagonal.
@@ -95,6 +118,12 @@ pub fn ltdl_solve(g: &mut ExprGraph, m: &[ExprId], b: &[ExprId]) -> Vec<ExprId> 
         }
         // Entries with L_ki = 0 keep M_ki = 0 there (structural zeros), so h[k][i] is L_ki.
     }
+    (h, inv_d)
+}
+
+/// `x = M⁻¹ b` from the factors of [`ltdl_factor`]: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
+pub fn ltdl_apply(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
+    let n = b.len();
     // Lᵀ y = b, from the last row up.
     let mut y = b.to_vec();
     for k in (0..n).rev() {

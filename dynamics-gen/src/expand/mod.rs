@@ -47,11 +47,12 @@ pub mod mimic;
 pub mod rnea;
 pub mod rnea_classical;
 pub mod spatial;
+pub mod task_space;
 
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::{JointKind, Robot};
 use rnea::LinkForce;
-use spatial::{JointMotion, ShiftForm};
+use spatial::{JointMotion, ShiftForm, VectorOps};
 
 /// Input group of the joint positions q.
 pub const Q: u8 = 0;
@@ -109,6 +110,17 @@ pub struct Dynamics {
     /// `Ṁ(q, ν) = Σ_k ∂M/∂q_k q̇_k`: the directional derivative of `mass_matrix`'s graph
     /// along the configuration rate ([`base::configuration_rate`]), nv×nv row-major.
     pub mass_matrix_dot: Vec<ExprId>,
+    /// `C(q, ν)` with `C ν = c` and `Ṁ − 2C` skew-symmetric: the Christoffel symbols of
+    /// `mass_matrix` (and the base's Euler–Poincaré term), nv×nv row-major; see
+    /// [`coriolis_matrix`].
+    pub coriolis_matrix: Vec<ExprId>,
+    /// `h(q, ν) = c(q, ν) + g(q)`: Newton–Euler with `ν̇ = 0` (the bias of forward dynamics).
+    pub bias: Vec<ExprId>,
+    /// `L` of `M = Lᵀ D L` ([`ldlt::ltdl_factor`]): nv×nv row-major, unit diagonal (the
+    /// diagonal and upper entries are not set; read the strictly lower triangle).
+    pub mass_matrix_factor: Vec<ExprId>,
+    /// `1 / D_k` of the same factorisation.
+    pub mass_matrix_inv_d: Vec<ExprId>,
 }
 
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
@@ -240,7 +252,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         Some(ForwardRoute::Ldlt) => vec![&by_ldlt],
         Some(ForwardRoute::Aba) => vec![&by_aba],
     };
-    let mut roots: Vec<&[ExprId]> = vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics];
+    let mut roots: Vec<&[ExprId]> =
+        vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics, &bias];
     roots.extend(candidates);
     let (g, pruned) = if prune {
         prune_checked(g, &roots)
@@ -249,7 +262,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     };
     let mut pruned = pruned.into_iter();
     let mut next = || pruned.next().unwrap_or_default();
-    let (mass_matrix, coriolis, gravity, inverse_dynamics) = (next(), next(), next(), next());
+    let (mass_matrix, coriolis, gravity, inverse_dynamics, bias) =
+        (next(), next(), next(), next(), next());
     let (by_ldlt, by_aba) = match route {
         None => (next(), next()),
         Some(ForwardRoute::Ldlt) => (next(), Vec::new()),
@@ -270,6 +284,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let kinetic_energy = kinetic_energy(&mut g, &mass_matrix, nv);
     let rate = base::configuration_rate(&mut g, floating, k);
     let mass_matrix_dot = g.jvp(&mass_matrix, &rate);
+    let coriolis_matrix = coriolis_matrix(&mut g, &mass_matrix, &mass_matrix_dot, floating, k);
+    let (factor, inv_d) = ldlt::ltdl_factor(&mut g, &mass_matrix);
     Dynamics {
         graph: g,
         dof: k,
@@ -283,7 +299,76 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         forward_route: route,
         kinetic_energy,
         mass_matrix_dot,
+        coriolis_matrix,
+        bias,
+        mass_matrix_factor: factor,
+        mass_matrix_inv_d: inv_d,
     }
+}
+
+/// The Coriolis matrix from the Christoffel symbols of the first kind of `m` (nv×nv
+/// row-major), with `m_dot` = Ṁ:
+/// ```text
+/// C_ij = Σ_k Γ_ijk ν_k,   Γ_ijk = ½ (∂M_ij/∂q_k + ∂M_ik/∂q_j − ∂M_jk/∂q_i)
+///   ⇒  C = ½ (Ṁ + P − Pᵀ),   P_ij = ∂(M ν)_i/∂q_j  (ν held constant)
+/// ```
+/// (the first sum is Ṁ, the second and third are P and Pᵀ), so `C ν = c` and `Ṁ − 2C =
+/// Pᵀ − P` is skew-symmetric (Modern Robotics §8.1.2). P's columns are the partial
+/// derivatives of the momentum `p = M ν` along each joint coordinate (one forward-mode
+/// sweep each); on a floating base M does not depend on the base pose, so the base's six
+/// columns of P are zero, and its base block gets the Euler–Poincaré term `−H(h_b)` of the
+/// body twist, `H(h) V = [ad_V]ᵀ h` with `h_b = p[0..6]` (see `dynamics_reference`'s
+/// `coriolis_matrix`), which keeps both properties.
+fn coriolis_matrix(
+    g: &mut ExprGraph,
+    m: &[ExprId],
+    m_dot: &[ExprId],
+    floating: bool,
+    k: usize,
+) -> Vec<ExprId> {
+    let (oq, ov) = if floating {
+        (base::NQ_BASE, base::NV_BASE)
+    } else {
+        (0, 0)
+    };
+    let nv = k + ov;
+    let v: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
+    let p: Vec<ExprId> = m.chunks(nv).map(|row| g.dot(row, &v)).collect();
+    let zero = g.zero();
+    // dp[j] = ∂p/∂q_j (column j of P).
+    let mut dp = vec![vec![zero; nv]; nv];
+    for j in 0..k {
+        dp[ov + j] = g.diff_many(&p, input(Q, oq + j));
+    }
+    let mut c = vec![zero; nv * nv];
+    for i in 0..nv {
+        for j in 0..nv {
+            let skew = g.sub(dp[j][i], dp[i][j]);
+            let sum = g.add(m_dot[i * nv + j], skew);
+            c[i * nv + j] = g.cmul(0.5, sum);
+        }
+    }
+    if floating {
+        // −H(h_b) = −[[ [h_ω], [h_f] ], [ [h_f], 0 ]], [x] the cross-product matrix.
+        let h: Vec<ExprId> = p[..6].to_vec();
+        let cross = |g: &mut ExprGraph, x: &[ExprId]| -> [[ExprId; 3]; 3] {
+            let neg = |g: &mut ExprGraph, a| g.neg(a);
+            let (nx0, nx1, nx2) = (neg(g, x[0]), neg(g, x[1]), neg(g, x[2]));
+            [[zero, nx2, x[1]], [x[2], zero, nx0], [nx1, x[0], zero]]
+        };
+        let hw = cross(g, &h[..3]);
+        let hf = cross(g, &h[3..]);
+        for r in 0..3 {
+            for s in 0..3 {
+                for (row, col, x) in [(r, s, hw[r][s]), (r, 3 + s, hf[r][s]), (3 + r, s, hf[r][s])]
+                {
+                    let e = &mut c[row * nv + col];
+                    *e = g.sub(*e, x);
+                }
+            }
+        }
+    }
+    c
 }
 
 /// `½ νᵀ M ν` from the nv×nv row-major `m` (see [`Dynamics::kinetic_energy`]).

@@ -54,6 +54,7 @@ mod diff;
 mod dot;
 mod eval;
 mod graph;
+mod import;
 mod node;
 pub mod sexp;
 mod simplify;
