@@ -117,6 +117,41 @@ pub trait GeneratedDynamics: Sync {
     fn jacobian_space(&self, q: &[f64]) -> DMatrix<f64>;
     /// `J_b(q)`, 6×nv.
     fn jacobian_body(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `C(q, q̇)`.
+    fn coriolis_matrix(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64>;
+    /// `(M, h)`.
+    fn mass_matrix_and_bias(&self, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVector<f64>);
+    /// `J_bᵀ F_tip`.
+    fn end_effector_forces(&self, q: &[f64], f_tip: &[f64]) -> DVector<f64>;
+    /// `τ` with a tip wrench.
+    fn inverse_dynamics_with_tip(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        f_tip: &[f64],
+    ) -> DVector<f64>;
+    /// `q̈` with a tip wrench.
+    fn forward_dynamics_with_tip(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+        f_tip: &[f64],
+    ) -> DVector<f64>;
+    /// `Λ(q)`.
+    fn task_space_mass_matrix(&self, q: &[f64]) -> Option<DMatrix<f64>>;
+    /// `η(q, q̇)`.
+    fn task_space_bias(&self, q: &[f64], qd: &[f64]) -> Option<DVector<f64>>;
+    /// `(q̈, λ)` under the constraints `a` (K×nv, K = 1, 2 or 3) with `a_dot_qd = Ȧq̇`.
+    fn constrained_forward_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+        a: &DMatrix<f64>,
+        a_dot_qd: &[f64],
+    ) -> Option<(DVector<f64>, DVector<f64>)>;
     /// `FRAME_NAMES` (empty without named frames).
     fn frame_names(&self) -> Vec<&'static str>;
     /// `frame_poses(q)` as homogeneous matrices.
@@ -253,6 +288,94 @@ macro_rules! adapter {
             fn jacobian_body(&self, q: &[f64]) -> DMatrix<f64> {
                 let j = $m::Robot::jacobian_body(self, &to_s::<$s, $nq>(q));
                 DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
+            }
+            fn coriolis_matrix(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
+                let m = $m::Robot::coriolis_matrix(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));
+                DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64)
+            }
+            fn mass_matrix_and_bias(&self, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVector<f64>) {
+                let (m, h) =
+                    $m::Robot::mass_matrix_and_bias(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));
+                (DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64), to_d(h))
+            }
+            fn end_effector_forces(&self, q: &[f64], f_tip: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::end_effector_forces(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, 6>(f_tip),
+                ))
+            }
+            fn inverse_dynamics_with_tip(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                qdd: &[f64],
+                f_tip: &[f64],
+            ) -> DVector<f64> {
+                to_d($m::Robot::inverse_dynamics_with_tip(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
+                    &to_s::<$s, 6>(f_tip),
+                ))
+            }
+            fn forward_dynamics_with_tip(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                tau: &[f64],
+                f_tip: &[f64],
+            ) -> DVector<f64> {
+                to_d($m::Robot::forward_dynamics_with_tip(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(tau),
+                    &to_s::<$s, 6>(f_tip),
+                ))
+            }
+            fn task_space_mass_matrix(&self, q: &[f64]) -> Option<DMatrix<f64>> {
+                $m::Robot::task_space_mass_matrix(self, &to_s::<$s, $nq>(q))
+                    .map(|l| DMatrix::from_fn(6, 6, |i, j| l[(i, j)] as f64))
+            }
+            fn task_space_bias(&self, q: &[f64], qd: &[f64]) -> Option<DVector<f64>> {
+                $m::Robot::task_space_bias(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd))
+                    .map(to_d)
+            }
+            fn constrained_forward_dynamics(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                tau: &[f64],
+                a: &DMatrix<f64>,
+                a_dot_qd: &[f64],
+            ) -> Option<(DVector<f64>, DVector<f64>)> {
+                fn call<const K: usize>(
+                    r: &$m::Robot,
+                    q: &[f64],
+                    qd: &[f64],
+                    tau: &[f64],
+                    a: &DMatrix<f64>,
+                    a_dot_qd: &[f64],
+                ) -> Option<(DVector<f64>, DVector<f64>)> {
+                    let a = nalgebra::SMatrix::<$s, K, $nv>::from_fn(|i, j| <$s>::from_f64(a[(i, j)]));
+                    $m::Robot::constrained_forward_dynamics::<K>(
+                        r,
+                        &to_s::<$s, $nq>(q),
+                        &to_s::<$s, $nv>(qd),
+                        &to_s::<$s, $nv>(tau),
+                        &a,
+                        &to_s::<$s, K>(a_dot_qd),
+                    )
+                    .map(|(x, l)| (to_d(x), to_d(l)))
+                }
+                match a.nrows() {
+                    1 => call::<1>(self, q, qd, tau, a, a_dot_qd),
+                    2 => call::<2>(self, q, qd, tau, a, a_dot_qd),
+                    3 => call::<3>(self, q, qd, tau, a, a_dot_qd),
+                    k => panic!("constrained_forward_dynamics: K = {k} not instantiated"),
+                }
             }
             $($frames)*
         }

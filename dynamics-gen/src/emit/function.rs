@@ -14,6 +14,9 @@ use crate::options::Scalar;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
+/// The deepest expression written inline: deeper ones get a `let` binding.
+const MAX_INLINE_DEPTH: u32 = 24;
+
 /// An argument of a generated function: a vector input named `name` of group `group`.
 #[derive(Clone, Debug)]
 pub struct Arg {
@@ -39,6 +42,29 @@ pub enum Output {
     Matrices(usize),
     /// An array of this many poses.
     Poses(usize),
+    /// A tuple of `count` (at most 3) matrices of the given `(rows, cols)`, each row-major,
+    /// one after the other (`rows`/`cols` of the body are ignored).
+    Tuple {
+        /// The shapes.
+        shapes: [(usize, usize); 3],
+        /// How many of `shapes` are used.
+        count: usize,
+    },
+    /// `Option` of one `rows × cols` matrix: the first `2·guards` outputs are pairs
+    /// `(d, a)`, and the result is `None` unless every `d > √ε · a` (ε of the scalar type;
+    /// false for NaN); the matrix follows them.
+    Checked {
+        /// The number of `(d, a)` pairs.
+        guards: usize,
+    },
+}
+
+/// `√ε` of the scalar type, the relative pivot below which [`Output::Checked`] gives `None`.
+pub fn sqrt_epsilon(scalar: Scalar) -> TokenStream {
+    match scalar {
+        Scalar::F64 => float_tokens(f64::EPSILON.sqrt(), scalar),
+        Scalar::F32 => float_tokens(f64::from(f32::EPSILON.sqrt()), scalar),
+    }
 }
 
 /// Everything the body writer needs.
@@ -61,6 +87,50 @@ pub struct FunctionBody<'a> {
     pub no_std: bool,
     /// The nalgebra path tokens.
     pub nalgebra: &'a TokenStream,
+}
+
+/// The most `let` statements in one block: longer bodies are split into blocks (see
+/// [`chunked`]).
+const MAX_BLOCK_LETS: usize = 512;
+
+/// A `let` statement of a body and the nodes it names.
+struct Statement {
+    defined: Vec<(Ident, ExprId)>,
+    tokens: TokenStream,
+}
+
+/// The statements, in blocks of at most [`MAX_BLOCK_LETS`]: `let (x, y, …) = { …; (x, y,
+/// …) };` with the names that later statements or the outputs read. Every `let` opens a
+/// lexical scope nested in the previous one, and the debug info of a function with tens of
+/// thousands of nested scopes overflows LLVM's stack (a crash in debug builds of large
+/// trees' Coriolis matrices); blocks keep the nesting below a few thousand. Values and
+/// their order are unchanged, so the optimised code is the same.
+fn chunked(body: Vec<Statement>, last_use: &[usize]) -> TokenStream {
+    if body.len() <= MAX_BLOCK_LETS {
+        return body.into_iter().map(|s| s.tokens).collect();
+    }
+    let mut out = TokenStream::new();
+    let mut start = 0;
+    let mut body = body.into_iter().peekable();
+    while body.peek().is_some() {
+        let chunk: Vec<Statement> = body.by_ref().take(MAX_BLOCK_LETS).collect();
+        let end = start + chunk.len();
+        let exported: Vec<&Ident> = chunk
+            .iter()
+            .flat_map(|s| s.defined.iter())
+            .filter(|(_, id)| last_use[id.index()] >= end)
+            .map(|(name, _)| name)
+            .collect();
+        let stmts = chunk.iter().map(|s| &s.tokens);
+        out.extend(quote! {
+            let (#(#exported),*) = {
+                #(#stmts)*
+                (#(#exported),*)
+            };
+        });
+        start = end;
+    }
+    out
 }
 
 #[derive(Clone)]
@@ -126,6 +196,11 @@ impl FunctionBody<'_> {
 
         let mut counter = 0usize;
         let mut trig_done = vec![false; trig.len()];
+        let mut depth = vec![0u32; g.len()];
+        // The `let` statements after the inputs', and for each named node the index of the
+        // last statement that reads it (`usize::MAX`: the outputs).
+        let mut body: Vec<Statement> = Vec::new();
+        let mut last_use = vec![0usize; g.len()];
         for k in 0..g.len() {
             if !live[k] {
                 continue;
@@ -160,21 +235,47 @@ impl FunctionBody<'_> {
                     } else {
                         quote!(_)
                     };
-                    stmts.extend(quote! { let (#s_pat, #c_pat) = #call; });
+                    self.note_uses(&bind, *a, body.len(), &mut last_use);
+                    let mut defined = Vec::new();
                     if let Some(sid) = trig[t].1 {
-                        bind[sid.index()] = Binding::Named(s);
+                        bind[sid.index()] = Binding::Named(s.clone());
+                        defined.push((s, sid));
                     }
                     if let Some(cid) = trig[t].2 {
-                        bind[cid.index()] = Binding::Named(c);
+                        bind[cid.index()] = Binding::Named(c.clone());
+                        defined.push((c, cid));
                     }
+                    body.push(Statement {
+                        defined,
+                        tokens: quote! { let (#s_pat, #c_pat) = #call; },
+                    });
                 }
                 _ => {
-                    let needs_let = uses[k] > 1 || matches!(node, Node::Div(..) | Node::Sqrt(_));
+                    // The depth of the expression written inline here (named operands count
+                    // 0): bounded, so that no expression nests deeply enough to exhaust the
+                    // compiler's stack (rustc recurses over nested expressions).
+                    depth[k] = 1 + node
+                        .operands()
+                        .map(|o| match bind[o.index()] {
+                            Binding::Named(_) => 0,
+                            Binding::Inline => depth[o.index()],
+                        })
+                        .max()
+                        .unwrap_or(0);
+                    let needs_let = uses[k] > 1
+                        || depth[k] > MAX_INLINE_DEPTH
+                        || matches!(node, Node::Div(..) | Node::Sqrt(_));
                     if needs_let {
                         let name = format_ident!("t{}", counter);
                         counter += 1;
                         let value = self.op(&bind, node);
-                        stmts.extend(quote! { let #name = #value; });
+                        for o in node.operands() {
+                            self.note_uses(&bind, o, body.len(), &mut last_use);
+                        }
+                        body.push(Statement {
+                            defined: vec![(name.clone(), id)],
+                            tokens: quote! { let #name = #value; },
+                        });
                         bind[k] = Binding::Named(name);
                     }
                 }
@@ -195,9 +296,54 @@ impl FunctionBody<'_> {
                 let items = (0..count).map(|k| self.pose(&bind, &self.outputs[k * 12..]));
                 quote!([#(#items),*])
             }
+            Output::Tuple { shapes, count } => {
+                let mut start = 0;
+                let items = shapes[..count].iter().map(|&(rows, cols)| {
+                    let part = FunctionBody {
+                        rows,
+                        cols,
+                        ..*self
+                    };
+                    let t = part.matrix(&bind, &self.outputs[start..]);
+                    start += rows * cols;
+                    t
+                });
+                quote!((#(#items),*))
+            }
+            Output::Checked { guards } => {
+                let tol = sqrt_epsilon(self.scalar);
+                let tests = (0..guards).map(|k| {
+                    let d = self.expr(&bind, self.outputs[2 * k]);
+                    let a = self.expr(&bind, self.outputs[2 * k + 1]);
+                    quote!(#d > #tol * #a)
+                });
+                let m = self.matrix(&bind, &self.outputs[2 * guards..]);
+                quote! {
+                    if !(#(#tests)&&*) {
+                        return None;
+                    }
+                    Some(#m)
+                }
+            }
         };
+        for &o in self.outputs {
+            self.note_uses(&bind, o, usize::MAX, &mut last_use);
+        }
+        stmts.extend(chunked(body, &last_use));
         stmts.extend(value);
         stmts
+    }
+
+    /// Records that statement `at` reads the named nodes in the inline expression of `id`.
+    fn note_uses(&self, bind: &[Binding], id: ExprId, at: usize, last_use: &mut [usize]) {
+        match bind[id.index()] {
+            Binding::Named(_) => last_use[id.index()] = last_use[id.index()].max(at),
+            Binding::Inline => {
+                for o in self.graph.node(id).operands() {
+                    self.note_uses(bind, o, at, last_use);
+                }
+            }
+        }
     }
 
     /// A `rows × cols` matrix from the first outputs of `outputs` (row-major), packed column

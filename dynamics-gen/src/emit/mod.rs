@@ -12,6 +12,7 @@ pub mod text;
 
 use crate::error::Error;
 use crate::expand::kinematics::{expand_kinematics, Kinematics};
+use crate::expand::task_space::{expand_task_space, TaskSpace, F_TIP};
 use crate::expand::{self, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use crate::options::{upper_camel, Options, Scalar};
 use dynamics_model::Robot;
@@ -36,6 +37,8 @@ pub struct Generated {
     pub dynamics: Dynamics,
     /// The kinematics of the end effector and the named frames (for statistics).
     pub kinematics: Kinematics,
+    /// The tip-wrench and task-space functions (for statistics).
+    pub task_space: TaskSpace,
     /// The robot as generated: validated, with the gravity override applied.
     pub robot: Robot,
 }
@@ -119,7 +122,11 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &[q.clone(), qd.clone(), qdd.clone()],
         1,
     );
-    let forward = body(&dynamics.forward_dynamics, &[q.clone(), qd.clone(), tau], 1);
+    let forward = body(
+        &dynamics.forward_dynamics,
+        &[q.clone(), qd.clone(), tau.clone()],
+        1,
+    );
     let kinetic = FunctionBody {
         graph: &dynamics.graph,
         args: &[q.clone(), qd.clone()],
@@ -138,6 +145,14 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         nv_usize,
     );
     let kinematics = expand_kinematics(&robot);
+    let task_space = expand_task_space(&dynamics, &kinematics);
+    let extras = dynamics_extras(
+        &dynamics,
+        &task_space,
+        options,
+        &nalgebra,
+        [&q, &qd, &qdd, &tau],
+    );
     let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &[q, qd]);
     let names: Vec<&str> = robot.joint_names();
     let units = unit_doc(&robot);
@@ -241,6 +256,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
                 #mass_matrix_dot
             }
 
+            #extras
+
             #kinematics_fns
         }
     };
@@ -266,8 +283,363 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         struct_item,
         dynamics,
         kinematics,
+        task_space,
         robot,
     })
+}
+
+/// Input groups of the private `solve_factored` helper: the packed factor `L` and `1/D`.
+const FACTOR_L: u8 = 5;
+const FACTOR_INV_D: u8 = 6;
+
+/// `coriolis_matrix`, `mass_matrix_and_bias`, the tip-wrench functions, the task-space
+/// functions, and `constrained_forward_dynamics` with its private helpers
+/// (`mass_matrix_factor`, `solve_factored`, `solve_constraint`).
+fn dynamics_extras(
+    d: &Dynamics,
+    t: &TaskSpace,
+    options: &Options,
+    nalgebra: &TokenStream,
+    [q, qd, qdd, tau]: [&Arg; 4],
+) -> TokenStream {
+    let nv_usize = d.nv;
+    let nv = proc_macro2::Literal::usize_unsuffixed(nv_usize);
+    let nq = proc_macro2::Literal::usize_unsuffixed(d.nq);
+    let scalar = Ident::new(options.scalar.as_str(), Span::call_site());
+    let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
+    let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
+    let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
+    let six_ty = quote!(#nalgebra::SVector<#scalar, 6>);
+    let lambda_ty = quote!(#nalgebra::SMatrix<#scalar, 6, 6>);
+    let f_tip = Arg {
+        name: "f_tip",
+        group: F_TIP,
+        len: 6,
+    };
+    let emit = |graph: &crate::expr::ExprGraph,
+                args: &[Arg],
+                outputs: &[crate::expr::ExprId],
+                (rows, cols): (usize, usize),
+                output: Output| {
+        FunctionBody {
+            graph,
+            args,
+            outputs,
+            rows,
+            cols,
+            output,
+            scalar: options.scalar,
+            no_std: options.no_std,
+            nalgebra,
+        }
+        .tokens()
+    };
+    let (q, qd, qdd, tau) = (q.clone(), qd.clone(), qdd.clone(), tau.clone());
+    let coriolis_matrix = emit(
+        &d.graph,
+        &[q.clone(), qd.clone()],
+        &d.coriolis_matrix,
+        (nv_usize, nv_usize),
+        Output::Matrix,
+    );
+    let both: Vec<_> = d.mass_matrix.iter().chain(&d.bias).copied().collect();
+    let mass_and_bias = emit(
+        &d.graph,
+        &[q.clone(), qd.clone()],
+        &both,
+        (0, 0),
+        Output::Tuple {
+            shapes: [(nv_usize, nv_usize), (nv_usize, 1), (0, 0)],
+            count: 2,
+        },
+    );
+    let tip_forces = emit(
+        &t.graph,
+        &[q.clone(), f_tip.clone()],
+        &t.end_effector_forces,
+        (nv_usize, 1),
+        Output::Matrix,
+    );
+    let id_tip = emit(
+        &t.graph,
+        &[q.clone(), qd.clone(), qdd.clone(), f_tip.clone()],
+        &t.inverse_dynamics_with_tip,
+        (nv_usize, 1),
+        Output::Matrix,
+    );
+    let fd_tip = emit(
+        &t.graph,
+        &[q.clone(), qd.clone(), tau.clone(), f_tip.clone()],
+        &t.forward_dynamics_with_tip,
+        (nv_usize, 1),
+        Output::Matrix,
+    );
+    let guards: Vec<_> = t.pivots.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let checked = |value: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
+        if value.is_empty() {
+            let names = args.iter().map(|a| Ident::new(a.name, Span::call_site()));
+            return quote! {
+                let _ = (#(#names),*);
+                None
+            };
+        }
+        let outputs: Vec<_> = guards.iter().chain(value).copied().collect();
+        emit(
+            &t.graph,
+            args,
+            &outputs,
+            (6, cols),
+            Output::Checked {
+                guards: t.pivots.len(),
+            },
+        )
+    };
+    let lambda = checked(&t.mass_matrix, std::slice::from_ref(&q), 6);
+    let eta = checked(&t.bias, &[q.clone(), qd.clone()], 1);
+    let tol = function::sqrt_epsilon(options.scalar);
+    let singular_doc = format!(
+        " `None` when `A = J_b M⁻¹ J_bᵀ` is singular or nearly so: some pivot `D_k` of its LDLᵀ factorisation (no pivoting, rows `ω₁ ω₂ ω₃ v₁ v₂ v₃`) is not greater than `√ε · A_kk` (√ε = {:e} for `{}`), e.g. at a kinematic singularity, and always for fewer than six velocity coordinates. Never NaN, never a panic.",
+        match options.scalar {
+            Scalar::F64 => f64::EPSILON.sqrt(),
+            Scalar::F32 => f64::from(f32::EPSILON.sqrt()),
+        },
+        options.scalar.as_str()
+    );
+
+    // M = Lᵀ D L, packed: the strictly lower entries of L that are not structural zeros.
+    let packed: Vec<(usize, usize)> = (0..nv_usize)
+        .flat_map(|i| (0..i).map(move |j| (i, j)))
+        .filter(|&(i, j)| !d.graph.is_zero(d.mass_matrix_factor[i * nv_usize + j]))
+        .collect();
+    let nl_usize = packed.len();
+    let nl = proc_macro2::Literal::usize_unsuffixed(nl_usize);
+    let l_ty = quote!(#nalgebra::SVector<#scalar, #nl>);
+    let factor_outputs: Vec<_> = packed
+        .iter()
+        .map(|&(i, j)| d.mass_matrix_factor[i * nv_usize + j])
+        .chain(d.mass_matrix_inv_d.iter().copied())
+        .chain(d.bias.iter().copied())
+        .collect();
+    let factor = emit(
+        &d.graph,
+        &[q.clone(), qd.clone()],
+        &factor_outputs,
+        (0, 0),
+        Output::Tuple {
+            shapes: [(nl_usize, 1), (nv_usize, 1), (nv_usize, 1)],
+            count: 3,
+        },
+    );
+    let mut sg = crate::expr::ExprGraph::new();
+    let zero = sg.zero();
+    let mut h = vec![zero; nv_usize * nv_usize];
+    for (p, &(i, j)) in packed.iter().enumerate() {
+        h[i * nv_usize + j] = sg.input(expand::input(FACTOR_L, p));
+    }
+    let inv_d: Vec<_> = (0..nv_usize)
+        .map(|i| sg.input(expand::input(FACTOR_INV_D, i)))
+        .collect();
+    let b: Vec<_> = (0..nv_usize)
+        .map(|i| sg.input(expand::input(TAU, i)))
+        .collect();
+    let x = crate::expand::ldlt::ltdl_apply(&mut sg, &h, &inv_d, &b);
+    let solve = emit(
+        &sg,
+        &[
+            Arg {
+                name: "l",
+                group: FACTOR_L,
+                len: nl_usize,
+            },
+            Arg {
+                name: "inv_d",
+                group: FACTOR_INV_D,
+                len: nv_usize,
+            },
+            Arg {
+                name: "b",
+                group: TAU,
+                len: nv_usize,
+            },
+        ],
+        &x,
+        (nv_usize, 1),
+        Output::Matrix,
+    );
+    let tol_doc = format!(
+        " `None` when `A M⁻¹ Aᵀ` is singular or nearly so: a pivot `D_k` of its LDLᵀ factorisation is not greater than `√ε` times its diagonal entry (√ε of `{}`), e.g. for dependent constraint rows. Never NaN, never a panic.",
+        options.scalar.as_str()
+    );
+    quote! {
+        /// The Coriolis matrix `C(q, q̇)` with `C_ij = Σ_k Γ_ijk q̇_k`, `Γ_ijk` the Christoffel
+        /// symbols of the first kind of `M` (Modern Robotics §8.1.2): `C q̇ = coriolis(q, q̇)`
+        /// and `Ṁ − 2C` is skew-symmetric. On a floating base the base block adds the
+        /// Euler–Poincaré term `−[ad_{ν_b}]ᵀ` of the base's body twist, as a skew-symmetric
+        /// block that keeps both properties.
+        #[inline]
+        #[must_use]
+        pub fn coriolis_matrix(&self, q: &#q_ty, qd: &#vec_ty) -> #mat_ty {
+            #coriolis_matrix
+        }
+
+        /// `(M(q), h(q, q̇))` with `h = c + g`, in one pass: what a controller needs each
+        /// tick (`τ = M q̈ + h`), sharing the trigonometry and the Newton–Euler forward pass
+        /// between the two.
+        #[inline]
+        #[must_use]
+        pub fn mass_matrix_and_bias(&self, q: &#q_ty, qd: &#vec_ty) -> (#mat_ty, #vec_ty) {
+            #mass_and_bias
+        }
+
+        /// `J_b(q)ᵀ F_tip`: the joint forces that make the end effector apply the wrench
+        /// `f_tip = (m, f)` (N·m, N) to the environment, expressed in the end-effector frame
+        /// (Modern Robotics §5.2, `EndEffectorForces`); zero for joints off its path.
+        #[inline]
+        #[must_use]
+        pub fn end_effector_forces(&self, q: &#q_ty, f_tip: &#six_ty) -> #vec_ty {
+            #tip_forces
+        }
+
+        /// Inverse dynamics with a tip wrench, `τ = M q̈ + c + g + J_bᵀ F_tip` (Modern Robotics
+        /// eq. 8.1 with §8.3.3): `f_tip = (m, f)` is the wrench the end effector applies to
+        /// the environment, in the end-effector frame.
+        #[inline]
+        #[must_use]
+        pub fn inverse_dynamics_with_tip(
+            &self,
+            q: &#q_ty,
+            qd: &#vec_ty,
+            qdd: &#vec_ty,
+            f_tip: &#six_ty,
+        ) -> #vec_ty {
+            #id_tip
+        }
+
+        /// Forward dynamics with a tip wrench, `q̈ = M⁻¹ (τ − c − g − J_bᵀ F_tip)`, by the
+        /// unrolled factorisation `M = Lᵀ D L` (no explicit inverse); `f_tip` as in
+        /// [`Self::inverse_dynamics_with_tip`].
+        #[inline]
+        #[must_use]
+        pub fn forward_dynamics_with_tip(
+            &self,
+            q: &#q_ty,
+            qd: &#vec_ty,
+            tau: &#vec_ty,
+            f_tip: &#six_ty,
+        ) -> #vec_ty {
+            #fd_tip
+        }
+
+        /// The task-space mass matrix `Λ(q) = (J_b M⁻¹ J_bᵀ)⁻¹` of the end-effector frame
+        /// (Modern Robotics §8.6), so that the end effector's wrench is `F = Λ V̇ + η` with
+        /// `V̇ = J_b q̈ + J̇_b q̇` its body acceleration; for redundant arms this is the
+        /// dynamically consistent generalisation of `J_b⁻ᵀ M J_b⁻¹`. By factorisations: `M⁻¹
+        /// J_bᵀ` by `M = Lᵀ D L`, `Λ` from `A = J_b M⁻¹ J_bᵀ = L D Lᵀ`.
+        #[doc = ""]
+        #[doc = #singular_doc]
+        #[inline]
+        #[must_use]
+        pub fn task_space_mass_matrix(&self, q: &#q_ty) -> Option<#lambda_ty> {
+            #lambda
+        }
+
+        /// The task-space bias `η(q, q̇) = Λ (J_b M⁻¹ h − J̇_b q̇)` (`h = c + g`) of
+        /// `F = Λ V̇ + η` (Modern Robotics §8.6, eq. 8.90 generalised to redundant arms), in the
+        /// end-effector frame; gravity included.
+        #[doc = ""]
+        #[doc = #singular_doc]
+        #[inline]
+        #[must_use]
+        pub fn task_space_bias(&self, q: &#q_ty, qd: &#vec_ty) -> Option<#six_ty> {
+            #eta
+        }
+
+        /// Forward dynamics under `K` linear velocity constraints `A(q) q̇ = 0` (Modern
+        /// Robotics §8.7, Exercise 8.10): `(q̈, λ)` with `M q̈ + h = τ + Aᵀ λ` and
+        /// `A q̈ + Ȧ q̇ = 0`, where `a` is `A(q)` and `a_dot_qd` is `Ȧ q̇`; `λ` are the
+        /// constraint forces' multipliers (`Aᵀ λ` the joint forces the constraints apply).
+        /// By the Schur complement: `q̈₀ = M⁻¹(τ − h)`, `Y = M⁻¹ Aᵀ` (the unrolled
+        /// `M = Lᵀ D L`), `(A Y) λ = −(A q̈₀ + Ȧ q̇)`, `q̈ = q̈₀ + Y λ`. `K` is the caller's, so
+        /// the `K`-sized part runs in loops (no allocation).
+        #[doc = ""]
+        #[doc = #tol_doc]
+        #[inline]
+        #[must_use]
+        pub fn constrained_forward_dynamics<const K: usize>(
+            &self,
+            q: &#q_ty,
+            qd: &#vec_ty,
+            tau: &#vec_ty,
+            a: &#nalgebra::SMatrix<#scalar, K, #nv>,
+            a_dot_qd: &#nalgebra::SVector<#scalar, K>,
+        ) -> Option<(#vec_ty, #nalgebra::SVector<#scalar, K>)> {
+            let (l, inv_d, h) = self.mass_matrix_factor(q, qd);
+            let free = Self::solve_factored(&l, &inv_d, &(tau - h));
+            let mut y = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();
+            for (mut column, row) in y.column_iter_mut().zip(a.row_iter()) {
+                column.copy_from(&Self::solve_factored(&l, &inv_d, &row.transpose()));
+            }
+            let s = a * y;
+            let r = -(a * free + a_dot_qd);
+            let lambda = Self::solve_constraint(s, r)?;
+            Some((free + y * lambda, lambda))
+        }
+
+        /// `(L, 1/D, h)`: the factorisation `M = Lᵀ D L` (the entries of the unit lower
+        /// triangular `L` that are not structural zeros, row by row) and the bias `h = c + g`.
+        #[inline]
+        fn mass_matrix_factor(&self, q: &#q_ty, qd: &#vec_ty) -> (#l_ty, #vec_ty, #vec_ty) {
+            #factor
+        }
+
+        /// `M⁻¹ b` from the factors of `mass_matrix_factor`: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
+        #[inline]
+        fn solve_factored(l: &#l_ty, inv_d: &#vec_ty, b: &#vec_ty) -> #vec_ty {
+            #solve
+        }
+
+        /// `S⁻¹ r` for the symmetric `S` by `S = L D Lᵀ` (in place, no pivoting); `None` when
+        /// a pivot is not greater than `√ε` times its diagonal entry.
+        #[inline]
+        fn solve_constraint<const K: usize>(
+            mut s: #nalgebra::SMatrix<#scalar, K, K>,
+            mut r: #nalgebra::SVector<#scalar, K>,
+        ) -> Option<#nalgebra::SVector<#scalar, K>> {
+            for j in 0..K {
+                let mut d = s[(j, j)];
+                for k in 0..j {
+                    d -= s[(j, k)] * s[(j, k)] * s[(k, k)];
+                }
+                if !(d > #tol * s[(j, j)]) {
+                    return None;
+                }
+                s[(j, j)] = d;
+                for i in j + 1..K {
+                    let mut x = s[(i, j)];
+                    for k in 0..j {
+                        x -= s[(i, k)] * s[(j, k)] * s[(k, k)];
+                    }
+                    s[(i, j)] = x / d;
+                }
+            }
+            for i in 0..K {
+                for k in 0..i {
+                    let t = s[(i, k)] * r[k];
+                    r[i] -= t;
+                }
+            }
+            for i in 0..K {
+                r[i] /= s[(i, i)];
+            }
+            for i in (0..K).rev() {
+                for k in i + 1..K {
+                    let t = s[(k, i)] * r[k];
+                    r[i] -= t;
+                }
+            }
+            Some(r)
+        }
+    }
 }
 
 /// The impl block with only the functions of `options.functions` (all when `None`), after
