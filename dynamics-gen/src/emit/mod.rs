@@ -398,7 +398,7 @@ fn dynamics_extras(
     let eta = checked(&t.bias, &[q.clone(), qd.clone()], 1);
     let tol = function::sqrt_epsilon(options.scalar);
     let singular_doc = format!(
-        " `None` when `A = J_b M⁻¹ J_bᵀ` is singular or nearly so: some pivot `D_k` of its LDLᵀ factorisation (no pivoting, rows `ω₁ ω₂ ω₃ v₁ v₂ v₃`) is not greater than `√ε · A_kk` (√ε = {:e} for `{}`), e.g. at a kinematic singularity, and always for fewer than six velocity coordinates. Never NaN, never a panic.",
+        " `None` when `A = J_b M⁻¹ J_bᵀ` is singular or nearly so: some pivot `D_k` of its factorisation `L D Lᵀ` (no pivoting, rows `ω₁ ω₂ ω₃ v₁ v₂ v₃`) is not greater than `√ε · A_kk` (√ε = {:e} for `{}`), e.g. at a kinematic singularity, and always for fewer than six velocity coordinates. Never NaN, never a panic.",
         match options.scalar {
             Scalar::F64 => f64::EPSILON.sqrt(),
             Scalar::F32 => f64::from(f32::EPSILON.sqrt()),
@@ -467,7 +467,7 @@ fn dynamics_extras(
         Output::Matrix,
     );
     let tol_doc = format!(
-        " `None` when `A M⁻¹ Aᵀ` is singular or nearly so: a pivot `D_k` of its LDLᵀ factorisation is not greater than `√ε` times its diagonal entry (√ε of `{}`), e.g. for dependent constraint rows. Never NaN, never a panic.",
+        " `None` when `A M⁻¹ Aᵀ` is singular or nearly so: a pivot `D_k` of its factorisation `L D Lᵀ` is not greater than `√ε` times its diagonal entry (√ε of `{}`), e.g. for dependent constraint rows. Never NaN, never a panic.",
         options.scalar.as_str()
     );
     quote! {
@@ -687,15 +687,33 @@ fn select_functions(
     }
     let mut item: syn::ItemImpl = syn::parse2(impl_block)
         .map_err(|e| Error::Internal(format!("generated impl does not parse: {e}")))?;
+    let wanted = |name: &str| selected.iter().any(|s| s == name);
     item.items.retain(|it| match it {
         syn::ImplItem::Fn(f) => {
             let name = f.sig.ident.to_string();
-            !known.contains(&name.as_str()) || selected.contains(&name)
+            match HELPERS.iter().find(|(helper, _)| *helper == name) {
+                // A private helper stays while a selected function calls it.
+                // (The named frames' own functions, always generated with the frames, need
+                // `isometry` too.)
+                Some((helper, users)) => {
+                    users.iter().any(|u| wanted(u))
+                        || (*helper == "isometry" && !robot.frames.is_empty())
+                }
+                None => !known.contains(&name.as_str()) || wanted(&name),
+            }
         }
         _ => true,
     });
     Ok(quote!(#item))
 }
+
+/// The private helpers of the generated impl and the functions that call them.
+const HELPERS: &[(&str, &[&str])] = &[
+    ("isometry", &["end_effector_pose", "frame_poses"]),
+    ("mass_matrix_factor", &["constrained_forward_dynamics"]),
+    ("solve_factored", &["constrained_forward_dynamics"]),
+    ("solve_constraint", &["constrained_forward_dynamics"]),
+];
 
 /// `end_effector_pose`, `jacobian_space`, `jacobian_body`, and for named frames
 /// `FRAME_NAMES`, `frame_poses`, `frame_jacobians_space`, `frame_jacobians_body`; the
