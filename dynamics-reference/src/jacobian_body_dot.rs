@@ -80,9 +80,7 @@ pub fn frame_jacobian_body_dot(
         v_rel += col(off + j) * qd[off + j];
     }
     for k in 0..off {
-        j_dot
-            .column_mut(k)
-            .copy_from(&(ad(&col(k)) * v_rel));
+        j_dot.column_mut(k).copy_from(&(ad(&col(k)) * v_rel));
     }
     j_dot
 }

@@ -22,7 +22,11 @@ impl Ldlt {
     /// `f64::EPSILON`; NaN fails too).
     pub(crate) fn new(a: &DMatrix<f64>) -> Option<Self> {
         let n = a.nrows();
-        assert_eq!(a.ncols(), n, "dynamics-reference: LDLᵀ of a non-square matrix");
+        assert_eq!(
+            a.ncols(),
+            n,
+            "dynamics-reference: LDLᵀ of a non-square matrix"
+        );
         let tol = f64::EPSILON.sqrt();
         let mut l = DMatrix::identity(n, n);
         let mut d = DVector::zeros(n);
@@ -35,7 +39,7 @@ impl Ldlt {
             for j in 0..k {
                 d_k -= l[(k, j)] * l[(k, j)] * d[j];
             }
-            if !(d_k > tol * a_kk) {
+            if d_k.is_nan() || d_k <= tol * a_kk {
                 return None;
             }
             d[k] = d_k;
