@@ -23,7 +23,8 @@
 /// Since `θ̈(G) = θ̈(G*²/G)`, a gear k times too small is as bad as one k times too large.
 ///
 /// `link_inertia` is the link's inertia about the joint axis (kg·m²), `rotor_inertia` the
-/// rotor's about its own axis. Not finite (or NaN) unless both are positive.
+/// rotor's about its own axis; both should be positive (`I_rotor = 0` gives `+∞`: without a
+/// rotor, more gearing always helps).
 ///
 /// ```
 /// let g = dynamics_model::actuation::optimal_gear_ratio(0.5, 0.0002);
