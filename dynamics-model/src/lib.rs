@@ -25,6 +25,9 @@
 //! - Gravity ([`Robot::gravity`]) is a vector in {0}, by default `(0, 0, −9.81)` m/s².
 //! - The dynamics are `τ = M(q) q̈ + c(q, q̇) + g(q) + J_b(q)ᵀ F_tip`, where `F_tip` is the
 //!   wrench the end effector applies to the environment, in {n+1}.
+//! - Actuation and friction ([`actuation`]): M includes each joint's armature
+//!   `G² I_rotor` ([`Joint::armature`]) on its diagonal; viscous and Coulomb friction
+//!   ([`Joint::damping`], [`Joint::friction`]) is a separate term, `τ = ID + τ_friction`.
 //!
 //! ## Mimic joints
 //!
@@ -68,6 +71,7 @@
 //! - A URDF file ([`urdf`]).
 //! - A shipped robot by name ([`shipped`]), and [`load()`](fn@load) for any of the above.
 
+pub mod actuation;
 pub mod error;
 pub mod inertia;
 pub mod lie;
@@ -76,6 +80,7 @@ pub mod random;
 pub mod robot;
 pub mod validate;
 
+pub use actuation::optimal_gear_ratio;
 pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
 pub use mimic::{Coupling, Mimic};

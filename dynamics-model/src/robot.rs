@@ -53,13 +53,21 @@ pub struct Joint {
     pub screw: Vector6<f64>,
     /// Position limits; `None` for an unlimited (continuous) joint.
     pub limits: Option<JointLimits>,
-    /// Viscous damping coefficient (N·m·s/rad or N·s/m); kept for later, not in the dynamics yet.
+    /// `b_i ≥ 0`, the viscous friction (damping) coefficient (N·m·s/rad or N·s/m): a joint
+    /// force `b_i q̇_i` opposing the motion. It enters the dynamics only through the friction
+    /// functions (dynamics-reference's `friction_forces`, `τ = ID + τ_friction`), never through
+    /// M, c or g.
     pub damping: f64,
-    /// Coulomb friction (N·m or N); kept for later, not in the dynamics yet.
+    /// `μ_i ≥ 0`, the Coulomb friction (N·m or N): a joint force `μ_i sgn(q̇_i)` opposing the
+    /// motion. Like [`Joint::damping`], only through the friction functions.
     pub friction: f64,
-    /// Rotor inertia (kg·m²) on the motor side; kept for later, not in the dynamics yet.
+    /// `I_rotor ≥ 0`, the rotor's inertia about its own axis (kg·m²), on the motor side of the
+    /// gear. With [`Joint::gear_ratio`] it gives the reflected inertia [`Joint::armature`],
+    /// which the mass matrix adds to its diagonal (Modern Robotics §8.9.2).
     pub rotor_inertia: f64,
-    /// Gear ratio (motor turns per joint turn); kept for later, not in the dynamics yet.
+    /// `G ≠ 0`, the gear ratio: motor turns per joint turn (1 for a direct drive). The motor
+    /// turns at `G q̇_i` and its torque is multiplied by G; only `G²` enters the dynamics,
+    /// through [`Joint::armature`].
     pub gear_ratio: f64,
     /// `Some` for a mimic joint, which follows an independent joint and is not one of the
     /// coordinates of q, ν, ν̇, τ (see [`crate::mimic`]); `None` for an independent joint.
@@ -67,6 +75,16 @@ pub struct Joint {
 }
 
 impl Joint {
+    /// The armature `G² I_rotor` (kg·m² or kg): the rotor's inertia reflected through the
+    /// gear to the joint side ([`Joint::gear_ratio`]² · [`Joint::rotor_inertia`]), Modern
+    /// Robotics §8.9.2. A rotor turning at `G q̇_i` stores `½ I_rotor (G q̇_i)²`, so the joint
+    /// sees an extra `G² I_rotor` on the diagonal entry `M_ii` of the mass matrix (the rotor's
+    /// gyroscopic coupling with the moving links is neglected, as in the book). This is
+    /// Pinocchio's `model.armature`. Zero without a rotor (the default).
+    pub fn armature(&self) -> f64 {
+        self.gear_ratio * self.gear_ratio * self.rotor_inertia
+    }
+
     /// A joint with no limits and no friction, damping or rotor.
     pub fn new(name: impl Into<String>, kind: JointKind, screw: Vector6<f64>) -> Self {
         Self {

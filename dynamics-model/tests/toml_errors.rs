@@ -623,24 +623,42 @@ fn revolute_screw_with_pitch_is_refused() {
 }
 
 #[test]
-fn actuation_and_friction_fields_are_refused_until_modelled() {
-    for (key, value) in [
-        ("damping", "0.5"),
-        ("friction", "0.1"),
-        ("rotor_inertia", "1e-4"),
-        ("gear_ratio", "100"),
+fn actuation_and_friction_fields_load_onto_the_joint() {
+    let text = edit(
+        "screw = [0, 0, 1, 0, 0, 0]",
+        "screw = [0, 0, 1, 0, 0, 0]\ndamping = 0.5\nfriction = 0.1\nrotor_inertia = 1e-4\ngear_ratio = -100",
+    );
+    let robot = from_str(&text, Format::Toml, FILE, &LoadOptions::default()).expect("loads");
+    let j1 = &robot.joints[0];
+    assert_eq!(
+        (j1.damping, j1.friction, j1.rotor_inertia, j1.gear_ratio),
+        (0.5, 0.1, 1e-4, -100.0)
+    );
+    // The armature G²·I_rotor: the sign of G does not matter.
+    assert!((j1.armature() - 1.0).abs() < 1e-15, "{}", j1.armature());
+    // Left out: no friction, no rotor.
+    let j2 = &robot.joints[1];
+    assert_eq!(
+        (j2.damping, j2.friction, j2.rotor_inertia, j2.gear_ratio),
+        (0.0, 0.0, 0.0, 1.0)
+    );
+    assert_eq!(j2.armature(), 0.0);
+}
+
+#[test]
+fn actuation_and_friction_fields_are_validated() {
+    for (key, value, problem) in [
+        ("damping", "-0.5", "finite and ≥ 0"),
+        ("friction", "nan", "finite and ≥ 0"),
+        ("rotor_inertia", "-1e-4", "finite and ≥ 0"),
+        ("rotor_inertia", "inf", "finite and ≥ 0"),
+        ("gear_ratio", "0", "finite and non-zero"),
+        ("gear_ratio", "inf", "finite and non-zero"),
     ] {
         let text = edit(
             "screw = [0, 0, 1, 0, 0, 0]",
             &format!("screw = [0, 0, 1, 0, 0, 0]\n{key} = {value}"),
         );
-        let msg = invalid(&text, "joint `j1`", key, "not part of the dynamics yet");
-        assert!(msg.contains(&format!("remove `{key}`")), "{msg}");
+        invalid(&text, "joint `j1`", key, problem);
     }
-    // The neutral values are accepted: they change nothing.
-    let text = edit(
-        "screw = [0, 0, 1, 0, 0, 0]",
-        "screw = [0, 0, 1, 0, 0, 0]\ndamping = 0\nfriction = 0.0\nrotor_inertia = 0\ngear_ratio = 1",
-    );
-    from_str(&text, Format::Toml, FILE, &LoadOptions::default()).expect("neutral values load");
 }

@@ -11,8 +11,9 @@ use nalgebra::{DVector, Vector3, Vector6};
 /// (on a floating base ν̇ = (ω̇_b, v̇_b, θ̈) and τ = (m_b, f_b, τ_θ), see the crate docs).
 ///
 /// The right-hand side takes one Newton–Euler pass, `c + g + J_bᵀ F_tip = ID(q, ν, 0, g, F_tip)`;
-/// `M` comes from [`mass_matrix`] and is factorised by Cholesky, `M = L Lᵀ`, and solved (never
-/// inverted). The book inverts `M` explicitly, so results differ from it at rounding level.
+/// `M` comes from [`mass_matrix`] (armature included) and is factorised by Cholesky,
+/// `M = L Lᵀ`, and solved (never inverted). Friction is not included: pass
+/// `τ − τ_friction` ([`crate::friction_forces`]) for a joint with friction. The book inverts `M` explicitly, so results differ from it at rounding level.
 ///
 /// # Errors
 /// [`ReferenceError::MassMatrixNotPositiveDefinite`] when the Cholesky factorisation fails.

@@ -28,8 +28,12 @@ use nalgebra::{DVector, Vector3, Vector6};
 /// `F_tip`, in {n+1}, into the end effector's link first):
 /// ```text
 /// F_i = Σ_{k: λ(k) = i} [Ad_{T_{k,i}}]ᵀ F_k + G_i V̇_i − [ad_{V_i}]ᵀ G_i V_i       (8.53)
-/// τ_i = F_iᵀ A_i                                                                  (8.54)
+/// τ_i = F_iᵀ A_i + G_i² I_rotor,i θ̈_i                                              (8.54)
 /// ```
+/// where `G_i² I_rotor,i` is joint i's armature ([`dynamics_model::Joint::armature`], the
+/// rotor inertia reflected through the gear, §8.9.2; zero without a rotor), the diagonal term
+/// [`crate::mass_matrix`] adds to `M_ii`. Friction is not included: add
+/// [`crate::friction_forces`] for the torque that also overcomes it.
 /// Floating base: `τ[0..6] = F_0`, the same sum for the base body with its own inertia `G_b`
 /// ([`dynamics_model::Base::inertia`]): the wrench the base needs, in the base frame.
 ///
@@ -88,7 +92,7 @@ pub fn inverse_dynamics(
     for i in (0..n).rev() {
         let f_i = from_children[i + 1] + g_list[i] * vd_i[i + 1]
             - ad(&v_i[i + 1]).transpose() * (g_list[i] * v_i[i + 1]);
-        tau[off + i] = f_i.dot(&a[i]);
+        tau[off + i] = f_i.dot(&a[i]) + robot.joints[i].armature() * theta_dd[i];
         from_children[frames.parent_slot(i)] += ad_t_i_parent[i].transpose() * f_i;
     }
     if robot.base.floating {

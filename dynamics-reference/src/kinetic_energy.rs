@@ -4,7 +4,8 @@ use crate::mass_matrix::mass_matrix;
 use dynamics_model::Robot;
 use nalgebra::DVector;
 
-/// `K(q, ν) = ½ νᵀ M(q) ν` (the base's kinetic energy included on a floating base).
+/// `K(q, ν) = ½ νᵀ M(q) ν` (the base's kinetic energy included on a floating base, and the
+/// rotors' `½ G_i² I_rotor,i θ̇_i²` through the armature on M's diagonal).
 ///
 /// # Panics
 /// If `q` does not have `robot.nq()` entries, or `qd` not `robot.nv()`.

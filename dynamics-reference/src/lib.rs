@@ -1,6 +1,6 @@
 //! Generic recursive rigid-body dynamics of a kinematic tree (the open serial chain is its
 //! special case) on a fixed or floating base, written plainly after Modern Robotics (Lynch &
-//! Park), sections 8.3–8.5, with the semantics of the book's Python library
+//! Park), sections 8.3–8.7 and 8.9, with the semantics of the book's Python library
 //! (`InverseDynamics`, `MassMatrix`, `ForwardDynamics`, …) and Featherstone's tree
 //! recursions (RNEA, CRBA) in the book's notation.
 //!
@@ -31,7 +31,8 @@
 //! - The equations of motion are
 //!   `τ = M(q) ν̇ + c(q, ν) + g(q) + J_b(q)ᵀ F_tip`, where `J_b` is the body Jacobian of {n+1},
 //!   `c = C(q, ν) ν` (Coriolis and centripetal terms) and `g(q) = ∂P/∂q`. On a fixed base
-//!   `q = θ`, `ν = θ̇`, `ν̇ = θ̈` (n entries each), as in the book.
+//!   `q = θ`, `ν = θ̇`, `ν̇ = θ̈` (n entries each), as in the book. M includes each joint's
+//!   armature (below); friction is a separate term.
 //!
 //! ## Floating base
 //!
@@ -81,6 +82,25 @@
 //! and the Coriolis matrix from the Christoffel symbols of the projected M equals
 //! `Jᵀ C_phys J`. [`link_poses`] and [`TreeFrames`] still have one entry per physical joint.
 //! A robot without mimic joints takes none of this (its numbers are bit for bit as before).
+//!
+//! ## Actuation, friction, task space, constraints
+//!
+//! - **Armature** (§8.9.2): a joint with a rotor of inertia `I_rotor` behind a gear of ratio G
+//!   ([`dynamics_model::Joint::armature`] = `G² I_rotor`) adds it to its diagonal entry of M:
+//!   [`mass_matrix`] and [`inverse_dynamics`] (`+ G² I_rotor θ̈_i`) carry it, so do
+//!   [`forward_dynamics`], [`kinetic_energy`] and the trajectories; it is constant, so
+//!   [`mass_matrix_dot`] and [`coriolis_matrix`] do not change. Joint entries only (never the
+//!   floating base's); on mimic joints at the physical level, then projected.
+//! - **Friction**: [`friction_forces`] is `τ_friction = b θ̇ + μ sgn(θ̇)` (or `μ tanh(θ̇/ε)`),
+//!   which no other function adds: the actuation is `τ = ID + τ_friction`, and forward dynamics
+//!   with friction is `FD(τ − τ_friction)`.
+//! - **Jacobian rates** (Exercise 8.6): [`jacobian_space_dot`], [`jacobian_body_dot`] and their
+//!   `frame_` forms, `J̇ = dJ/dt` along [`configuration_rate`], from Lie brackets of the columns.
+//! - **Task space** (§8.6), in the end-effector frame: [`task_space_mass_matrix`]
+//!   `Λ = (J_b M⁻¹ J_bᵀ)⁻¹` and [`task_space_bias`] `η = Λ (J_b M⁻¹ h − J̇_b ν)`, so that
+//!   `F = Λ V̇_b + η`; `None` at singularities (an `L D Lᵀ` pivot test, documented there).
+//! - **Constraints** (§8.7, Exercise 8.10): [`constrained_forward_dynamics`] solves
+//!   `M ν̇ + h = τ + Aᵀλ`, `A ν̇ + Ȧν = 0` for ν̇ and λ.
 //!
 //! # Example
 //!
@@ -148,14 +168,16 @@
 //! Trajectories are `DMatrix<f64>` with one row per time step (N×nq for q, N×nv for ν, ν̇ and
 //! τ, N×6 for `F_tip`), as in the book's library.
 //!
-//! Everything holds for trees and floating bases: inverse and forward dynamics, M, c, g, C,
-//! Ṁ, energies, poses, Jacobians, tip forces and trajectories. [`euler_step`] alone is the
+//! Everything holds for trees, floating bases and mimic joints: inverse and forward dynamics,
+//! M, c, g, C, Ṁ, energies, poses, Jacobians and their rates, tip forces, trajectories,
+//! friction, the task space and constrained forward dynamics. [`euler_step`] alone is the
 //! book's fixed-base step (`q̇ = θ̇`); trajectories step a floating base with
 //! [`configuration_rate`].
 //!
 //! A vector whose length is not nq or nv is a programming error and panics with a message that
 //! names the argument; everything else (including a mass matrix that is not positive definite)
-//! is reported through [`ReferenceError`].
+//! is reported through [`ReferenceError`], or by `None` from the task-space and constrained
+//! functions, whose singularity contract is shared with the generated code.
 //!
 //! The functions accept every robot [`dynamics_model::Robot::from_mr_lists_unchecked`] builds,
 //! e.g. a screw axis with `|ω| ≠ 1`, as the book's library does.
@@ -163,6 +185,7 @@
 mod base;
 mod check;
 mod configuration_rate;
+mod constrained_forward_dynamics;
 mod coriolis_matrix;
 mod coupling;
 mod end_effector_forces;
@@ -172,20 +195,27 @@ mod euler_step;
 mod forward_dynamics;
 mod forward_dynamics_trajectory;
 mod frames;
+mod friction_forces;
 mod gravity_forces;
 mod inverse_dynamics;
 mod inverse_dynamics_trajectory;
 mod jacobian_body;
+mod jacobian_body_dot;
 mod jacobian_space;
+mod jacobian_space_dot;
 mod kinetic_energy;
+mod ldlt;
 mod link_poses;
 mod mass_matrix;
 mod mass_matrix_dot;
 mod potential_energy;
+mod task_space_bias;
+mod task_space_mass_matrix;
 mod vel_quadratic_forces;
 
 pub use base::{base_pose, quaternion_rotation};
 pub use configuration_rate::configuration_rate;
+pub use constrained_forward_dynamics::constrained_forward_dynamics;
 pub use coriolis_matrix::{coriolis_matrix, mass_matrix_partials};
 pub use end_effector_forces::end_effector_forces;
 pub use end_effector_pose::{end_effector_pose, frame_pose};
@@ -194,16 +224,21 @@ pub use euler_step::euler_step;
 pub use forward_dynamics::forward_dynamics;
 pub use forward_dynamics_trajectory::forward_dynamics_trajectory;
 pub use frames::TreeFrames;
+pub use friction_forces::friction_forces;
 pub use gravity_forces::gravity_forces;
 pub use inverse_dynamics::inverse_dynamics;
 pub use inverse_dynamics_trajectory::inverse_dynamics_trajectory;
 pub use jacobian_body::{frame_jacobian_body, jacobian_body};
+pub use jacobian_body_dot::{frame_jacobian_body_dot, jacobian_body_dot};
 pub use jacobian_space::{frame_jacobian_space, jacobian_space};
+pub use jacobian_space_dot::{frame_jacobian_space_dot, jacobian_space_dot};
 pub use kinetic_energy::kinetic_energy;
 pub use link_poses::link_poses;
 pub use mass_matrix::mass_matrix;
 pub use mass_matrix_dot::mass_matrix_dot;
 pub use potential_energy::potential_energy;
+pub use task_space_bias::task_space_bias;
+pub use task_space_mass_matrix::task_space_mass_matrix;
 pub use vel_quadratic_forces::vel_quadratic_forces;
 
 /// The literature acronym for [`inverse_dynamics`]: the recursive Newton–Euler algorithm.

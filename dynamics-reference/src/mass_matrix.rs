@@ -28,8 +28,17 @@ use nalgebra::{DMatrix, Matrix6};
 /// M[0..6, 0..6] = Ic_0,    M[0..6, j] = F carried to the base frame (every joint j)
 /// ```
 ///
-/// On a serial chain this equals `AᵀLᵀGLA` of the closed form (8.57) and the book's
-/// `MassMatrix` (n Newton–Euler calls); it is symmetric by construction.
+/// Armature (Modern Robotics §8.9.2): each joint's reflected rotor inertia
+/// `G_i² I_rotor,i` ([`dynamics_model::Joint::armature`]) is added to its own diagonal entry,
+/// ```text
+/// M_ii += G_i² I_rotor,i
+/// ```
+/// (joint entries only; on a robot with mimic joints at the physical level, before the
+/// projection `Jᵀ M J`, so a follower's rotor also loads its leader). It is constant, so Ṁ,
+/// C and the Christoffel symbols do not change.
+///
+/// On a serial chain without armature this equals `AᵀLᵀGLA` of the closed form (8.57) and the
+/// book's `MassMatrix` (n Newton–Euler calls); it is symmetric by construction.
 ///
 /// # Panics
 /// If `q` does not have `robot.nq()` entries.
@@ -62,7 +71,7 @@ pub fn mass_matrix(robot: &Robot, q: &[f64]) -> DMatrix<f64> {
         // f: the wrench on the subtree for a unit acceleration of joint i, in the frame of
         // the link reached so far on the way to the base.
         let mut f = ic[i] * a[i];
-        m[(off + i, off + i)] = a[i].dot(&f);
+        m[(off + i, off + i)] = a[i].dot(&f) + robot.joints[i].armature();
         let mut k = i;
         while let Some(j) = frames.parent[k] {
             f = ad_t_i_parent[k].transpose() * f;

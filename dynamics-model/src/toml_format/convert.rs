@@ -350,25 +350,6 @@ fn joint(subject: &Subject, j: &JointSpec, errors: &mut Vec<Invalid>) -> Option<
             "give the motor turns per joint turn (1 for a direct drive)",
         ));
     }
-    // Accepted fields always have an effect: until the dynamics model actuation and
-    // friction, a value that would change them is refused rather than silently ignored.
-    for (key, value, neutral) in [
-        ("damping", damping, 0.0),
-        ("friction", friction, 0.0),
-        ("rotor_inertia", rotor_inertia, 0.0),
-        ("gear_ratio", gear_ratio, 1.0),
-    ] {
-        if value.is_finite() && value != neutral && errors.len() == n_errors {
-            errors.push(Invalid::new(
-                subject.clone(),
-                key,
-                format!(
-                    "{key} = {value} is not part of the dynamics yet (actuation and friction are not modelled): the generated functions would silently ignore it"
-                ),
-                format!("remove `{key}` (or set it to {neutral}) until dynamics-gen models it"),
-            ));
-        }
-    }
     let screw = screw?;
     if errors.len() > n_errors {
         return None;

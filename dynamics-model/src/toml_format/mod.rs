@@ -33,10 +33,12 @@
 //! limits = [-3.14, 3.14]           # optional [lower, upper] (rad or m); absent: unlimited
 //! velocity_limit = 3.0             # optional, rad/s or m/s (needs `limits`)
 //! effort_limit = 150.0             # optional, N·m or N (needs `limits`)
-//! damping = 0.0                    # reserved, N·m·s/rad: only 0 (not modelled yet)
-//! friction = 0.0                   # reserved, Coulomb, N·m: only 0 (not modelled yet)
-//! rotor_inertia = 0.0              # reserved, kg·m², motor side: only 0 (not modelled yet)
-//! gear_ratio = 1.0                 # reserved, motor turns per joint turn: only 1
+//! damping = 0.0                    # optional, ≥ 0, viscous friction b, N·m·s/rad; default 0
+//! friction = 0.0                   # optional, ≥ 0, Coulomb friction μ, N·m; default 0
+//! #                                # (both only in τ_friction = b q̇ + μ sgn(q̇), below)
+//! rotor_inertia = 0.0              # optional, ≥ 0, rotor inertia I_rotor, kg·m², motor side
+//! gear_ratio = 1.0                 # optional, ≠ 0, motor turns per joint turn; default 1:
+//! #                                # the armature G²·I_rotor is added to M's diagonal
 //! # mimic = { joint = "elbow", multiplier = 1.0, offset = 0.0 }  # optional: a coupled
 //! #                                # joint, θ = multiplier·θ_elbow + offset (see "Mimic joints")
 //!
@@ -123,6 +125,16 @@
 //! and may follow another joint in turn (the chain is composed); a leader that is no joint of
 //! the robot, the joint itself, a cycle of mimics, or a multiplier that is zero or not finite
 //! is an error naming the joint and the field `mimic`.
+//!
+//! ## Actuation and friction
+//!
+//! `rotor_inertia` (`I_rotor`, ≥ 0) and `gear_ratio` (G, finite and non-zero) describe the
+//! motor behind the joint: its reflected inertia, the armature `G²·I_rotor`
+//! ([`crate::Joint::armature`], Modern Robotics §8.9.2), is added to the joint's diagonal
+//! entry of the mass matrix. `damping` (b) and `friction` (Coulomb μ), both ≥ 0, give the
+//! friction force `b q̇ + μ sgn(q̇)`, which is not part of M, c or g: the friction functions
+//! compute it and a caller adds it, `τ = ID + τ_friction` (see [`crate::actuation`]).
+//! Leaving the four keys out (or 0, 0, 0, 1) gives a joint without motor or friction.
 //!
 //! ## Poses
 //!

@@ -25,7 +25,8 @@
 //!   that link's body, [`crate::EndEffector::parent`], `None` for the base), by default the
 //!   child link of the last movable joint in the order above.
 //! - Continuous joints are unlimited revolute joints; limits with lower = upper = 0 are none.
-//!   `<dynamics damping friction>` is kept on the [`crate::Joint`]. Gravity is `(0, 0, −9.81)`.
+//!   `<dynamics damping friction>` is kept on the [`crate::Joint`] (viscous b and Coulomb μ, used
+//!   only by the friction functions, see [`crate::actuation`]). Gravity is `(0, 0, −9.81)`.
 //!
 //! # Floating base
 //!

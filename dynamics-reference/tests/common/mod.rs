@@ -149,3 +149,41 @@ impl MaxErr {
         }
     }
 }
+
+/// `J`, nv_phys × nv: how the physical joint velocities follow the coordinates (the floating
+/// base's 6×6 identity first; the identity without mimic joints).
+pub fn coupling_matrix(robot: &Robot) -> DMatrix<f64> {
+    let base = if robot.base.floating { 6 } else { 0 };
+    let mut j = DMatrix::zeros(base + robot.dof(), robot.nv());
+    for b in 0..base {
+        j[(b, b)] = 1.0;
+    }
+    for (i, c) in robot.couplings().iter().enumerate() {
+        j[(base + i, base + c.coordinate)] = c.multiplier;
+    }
+    j
+}
+
+/// `robot` with a random motor and friction on every joint: rotor inertia in [0, 1e-3)
+/// kg·m², gear ratio ±[1, 100), damping in [0, 2), Coulomb friction in [0, 1).
+pub fn with_actuation(rng: &mut random_chain::Rng, mut robot: Robot) -> Robot {
+    for j in &mut robot.joints {
+        j.rotor_inertia = rng.uniform(0.0, 1e-3);
+        let g = rng.uniform(1.0, 100.0);
+        j.gear_ratio = if rng.unit() < 0.5 { -g } else { g };
+        j.damping = rng.uniform(0.0, 2.0);
+        j.friction = rng.uniform(0.0, 1.0);
+    }
+    robot
+}
+
+/// `‖x − y‖∞ / max(‖y‖∞, 1e-300)`.
+pub fn rel_err(x: &[f64], y: &[f64]) -> f64 {
+    assert_eq!(x.len(), y.len(), "sizes differ");
+    let diff = x
+        .iter()
+        .zip(y)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    let scale = y.iter().fold(0.0_f64, |m, b| m.max(b.abs()));
+    diff / scale.max(1e-300)
+}
