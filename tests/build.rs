@@ -15,7 +15,13 @@ struct Case {
     robot: Robot,
     scalar: Scalar,
     no_std: bool,
+    friction: Option<dynamics_gen::options::Friction>,
 }
+
+/// The random trees with armature and friction (in the dynamics) compiled as Rust: (seed,
+/// bodies, floating base, Coulomb smoothing ε or exact).
+pub const ACTUATED: &[(u64, usize, bool, Option<f64>)] =
+    &[(401, 7, false, None), (402, 10, true, Some(0.05))];
 
 /// The random chains compiled as Rust: n = 1..12, every third joint prismatic on average.
 pub const RANDOM: &[(u64, usize)] = &[
@@ -83,6 +89,7 @@ fn main() {
             robot,
             scalar: Scalar::F64,
             no_std: false,
+            friction: None,
         });
     }
     for (name, tip) in [
@@ -106,6 +113,7 @@ fn main() {
             robot,
             scalar: Scalar::F64,
             no_std: false,
+            friction: None,
         });
     }
     for (k, &(seed, dof)) in RANDOM.iter().enumerate() {
@@ -121,6 +129,7 @@ fn main() {
             robot,
             scalar,
             no_std: k % 4 == 1,
+            friction: None,
         });
     }
     for (name, floating) in URDF_TREES {
@@ -136,6 +145,7 @@ fn main() {
             robot,
             scalar: Scalar::F64,
             no_std: false,
+            friction: None,
         });
     }
     for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {
@@ -147,6 +157,7 @@ fn main() {
             robot,
             scalar,
             no_std: k % 4 == 3,
+            friction: None,
         });
     }
     for (k, &(seed, dof, floating)) in MIMIC_TREES.iter().enumerate() {
@@ -163,6 +174,7 @@ fn main() {
             robot,
             scalar,
             no_std: k == 2,
+            friction: None,
         });
     }
     for name in URDF_MIMIC {
@@ -175,6 +187,37 @@ fn main() {
             robot,
             scalar: Scalar::F64,
             no_std: false,
+            friction: None,
+        });
+    }
+    for &(seed, dof, floating, eps) in ACTUATED {
+        let robot = actuated(random_tree(seed, tree_spec(dof, floating)), seed);
+        cases.push(Case {
+            module: format!("actuated_{seed}"),
+            spec: format!("Spec::Actuated({seed}, {dof}, {floating}, {eps:?})"),
+            robot,
+            scalar: Scalar::F64,
+            no_std: false,
+            friction: Some(match eps {
+                None => dynamics_gen::options::Friction::Coulomb,
+                Some(e) => dynamics_gen::options::Friction::Smooth(e),
+            }),
+        });
+    }
+    {
+        let path = data.join("panda.urdf");
+        let options = LoadOptions {
+            tip: Some("panda_hand".into()),
+            ..Default::default()
+        };
+        let robot = dynamics_model::load_file(&path, &options).expect("panda loads");
+        cases.push(Case {
+            module: "urdf_panda_armature".into(),
+            spec: "Spec::PandaArmature".into(),
+            robot: panda_armature(robot),
+            scalar: Scalar::F64,
+            no_std: false,
+            friction: None,
         });
     }
     // The same robots in f32 and no_std as well.
@@ -186,6 +229,7 @@ fn main() {
             robot,
             scalar: Scalar::F32,
             no_std: true,
+            friction: None,
         });
     }
 
@@ -199,6 +243,7 @@ fn main() {
             name: Some("Robot".into()),
             scalar: case.scalar,
             no_std: case.no_std,
+            friction: case.friction,
             ..Default::default()
         };
         let code = dynamics_gen::generate_file(&case.robot, &options, &case.spec)

@@ -125,6 +125,33 @@ impl Builder {
         self
     }
 
+    /// The armature `G²·I_rotor` of joint `joint` (kg·m², kg for a prismatic joint), added
+    /// to the mass matrix's diagonal (Pinocchio's `model.armature`), replacing the file's
+    /// `rotor_inertia` and `gear_ratio` for that joint. May be called several times.
+    pub fn armature(mut self, joint: impl Into<String>, value: f64) -> Self {
+        self.options.load.armature.push((joint.into(), value));
+        self
+    }
+
+    /// Include the joints' friction (`b q̇ + μ sgn(q̇)` from the robot file) in
+    /// `inverse_dynamics`, `forward_dynamics`, their `_with_tip` forms and
+    /// `constrained_forward_dynamics`. Off by default (URDF damping values are often
+    /// placeholders, and Pinocchio's `rnea` leaves them out); `friction(qd)` exists either
+    /// way.
+    pub fn friction(mut self) -> Self {
+        if self.options.friction.is_none() {
+            self.options.friction = Some(crate::options::Friction::Coulomb);
+        }
+        self
+    }
+
+    /// [`Builder::friction`] with the smooth Coulomb model `μ tanh(q̇/ε)` (ε in rad/s or
+    /// m/s, > 0; checked when generating), for simulation.
+    pub fn friction_smoothing(mut self, eps: f64) -> Self {
+        self.options.friction = Some(crate::options::Friction::Smooth(eps));
+        self
+    }
+
     /// The path of the nalgebra crate in the generated code (default `::nalgebra`).
     pub fn nalgebra_path(mut self, path: impl Into<String>) -> Self {
         self.options.nalgebra_path = path.into();

@@ -33,6 +33,12 @@ pub enum Error {
         /// The fix.
         fix: String,
     },
+    /// A friction smoothing ε that is not a positive finite velocity.
+    #[error("friction smoothing ε = {eps} is not a velocity > 0; fix: give ε in rad/s or m/s, like 0.01 (--friction-smoothing / .friction_smoothing() / friction_smoothing = ..)")]
+    InvalidFrictionSmoothing {
+        /// The value given.
+        eps: f64,
+    },
     /// The robot has no movable joint.
     #[error("robot `{robot}` has no movable joint: there are no dynamics to generate")]
     NoJoints {

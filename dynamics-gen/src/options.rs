@@ -52,6 +52,23 @@ pub struct Options {
     pub load: LoadOptions,
     /// The functions to generate, by name ([`FUNCTIONS`]); `None`: all of them.
     pub functions: Option<Vec<String>>,
+    /// Whether the joints' friction ([`Friction`]) enters `inverse_dynamics`,
+    /// `forward_dynamics`, their `_with_tip` forms and `constrained_forward_dynamics`;
+    /// `None` (default): it does not (URDF `<dynamics>` values are often placeholders, and
+    /// Pinocchio's `rnea` ignores them too). The `friction` function exists either way.
+    pub friction: Option<Friction>,
+}
+
+/// The friction model of the generated `friction(q̇)`: viscous damping `b q̇` plus Coulomb
+/// friction `μ sgn(q̇)` per joint (Modern Robotics §8.9.1).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Friction {
+    /// `b q̇ + μ sgn(q̇)`, `sgn(0) = 0`: discontinuous at rest, as the book writes it.
+    #[default]
+    Coulomb,
+    /// `b q̇ + μ tanh(q̇ / ε)` with this ε (rad/s or m/s, > 0): smooth, for simulation with
+    /// a fixed-step integrator (at `|q̇| = 3ε` the Coulomb part is 99.5 % of μ).
+    Smooth(f64),
 }
 
 /// Every function the generator can emit, in the order of the generated `impl`. The
@@ -65,6 +82,7 @@ pub const FUNCTIONS: &[&str] = &[
     "forward_dynamics",
     "kinetic_energy",
     "mass_matrix_dot",
+    "friction",
     "coriolis_matrix",
     "mass_matrix_and_bias",
     "end_effector_forces",
@@ -94,6 +112,7 @@ impl Default for Options {
             runtime_path: Some("::dynamics_runtime".into()),
             load: LoadOptions::default(),
             functions: None,
+            friction: None,
         }
     }
 }

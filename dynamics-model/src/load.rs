@@ -1,7 +1,7 @@
 //! Loading a robot from a file, a string or a shipped name, with the options every front end
 //! (CLI, build.rs, macros) shares.
 
-use crate::error::ModelError;
+use crate::error::{Invalid, ModelError, Subject};
 use crate::robot::Robot;
 use nalgebra::Vector3;
 use std::path::Path;
@@ -45,6 +45,12 @@ pub struct LoadOptions {
     /// nothing hangs from: feet, hands, sensors) in depth-first order; on a serial chain
     /// none (the end effector has its own functions).
     pub frames: Option<Vec<String>>,
+    /// Per joint, the armature `G² I_rotor` (kg·m² for a revolute joint, kg for a prismatic
+    /// one) added to the mass matrix's diagonal (Modern Robotics §8.9.2, Pinocchio's
+    /// `model.armature`): replaces the joint's `rotor_inertia` and `gear_ratio` from the
+    /// file by `rotor_inertia = value, gear_ratio = 1`. Any format; an unknown joint or a
+    /// negative or non-finite value is refused.
+    pub armature: Vec<(String, f64)>,
 }
 
 /// The name standard input has in errors.
@@ -159,5 +165,50 @@ fn parse(
     if options.floating_base {
         robot.base.floating = true;
     }
+    apply_armature(&mut robot, &options.armature).map_err(|e| e.in_file(file))?;
     Ok(robot)
+}
+
+/// [`LoadOptions::armature`] onto the robot's joints.
+fn apply_armature(robot: &mut Robot, armature: &[(String, f64)]) -> Result<(), ModelError> {
+    let mut errors = Vec::new();
+    for (name, value) in armature {
+        let Some((index, joint)) = robot
+            .joints
+            .iter_mut()
+            .enumerate()
+            .find(|(_, j)| &j.name == name)
+        else {
+            let known: Vec<&str> = robot.joints.iter().map(|j| j.name.as_str()).collect();
+            errors.push(Invalid::new(
+                Subject::Joint {
+                    index: None,
+                    name: name.clone(),
+                },
+                "armature",
+                "no movable joint has this name",
+                format!("give one of {}", known.join(", ")),
+            ));
+            continue;
+        };
+        if !(value.is_finite() && *value >= 0.0) {
+            errors.push(Invalid::new(
+                Subject::Joint {
+                    index: Some(index),
+                    name: name.clone(),
+                },
+                "armature",
+                format!("must be finite and ≥ 0, found {value}"),
+                "give the reflected rotor inertia G²·I_rotor (kg·m² or kg), ≥ 0",
+            ));
+            continue;
+        }
+        joint.rotor_inertia = *value;
+        joint.gear_ratio = 1.0;
+    }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(ModelError::Invalid(errors))
+    }
 }

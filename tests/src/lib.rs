@@ -24,6 +24,13 @@ pub enum Spec {
     /// `tests/data/robots/trees/<name>.urdf` with mimic joints (fixed base), compared with
     /// `data/reference/trees/<name>.json`.
     UrdfMimic(&'static str),
+    /// `actuated(random_tree(seed, tree_spec(dof, floating)), seed)` (armature, damping and
+    /// Coulomb friction on every joint), generated with friction in the dynamics: Coulomb
+    /// (`None`) or smoothed with this ε.
+    Actuated(u64, usize, bool, Option<f64>),
+    /// `tests/data/robots/panda.urdf` (tip `panda_hand`) with `panda_armature`, compared with
+    /// Pinocchio's `model.armature` numbers.
+    PandaArmature,
 }
 
 include!("tree_spec.rs");
@@ -67,11 +74,27 @@ impl Spec {
                     0.4,
                 ))
             }
+            Spec::Actuated(seed, dof, floating, _) => actuated(
+                dynamics_model::random::random_tree(seed, tree_spec(dof, floating)),
+                seed,
+            ),
+            Spec::PandaArmature => panda_armature(Spec::Urdf("panda", "panda_hand").robot()),
             Spec::UrdfMimic(name) => {
                 let path = data_dir().join(format!("robots/trees/{name}.urdf"));
                 dynamics_model::load_file(&path, &LoadOptions::default())
                     .unwrap_or_else(|e| panic!("{e}"))
             }
+        }
+    }
+}
+
+impl Spec {
+    /// The joint friction the generated `inverse_dynamics` and `forward_dynamics` include
+    /// (zero but for [`Spec::Actuated`]), by the reference's `friction_forces`.
+    pub fn friction_in_dynamics(&self, robot: &Robot, qd: &[f64]) -> nalgebra::DVector<f64> {
+        match *self {
+            Spec::Actuated(.., eps) => dynamics_reference::friction_forces(robot, qd, eps),
+            _ => nalgebra::DVector::zeros(robot.nv()),
         }
     }
 }
@@ -152,6 +175,8 @@ pub trait GeneratedDynamics: Sync {
         a: &DMatrix<f64>,
         a_dot_qd: &[f64],
     ) -> Option<(DVector<f64>, DVector<f64>)>;
+    /// `τ_f(q̇)`.
+    fn friction(&self, qd: &[f64]) -> DVector<f64>;
     /// `FRAME_NAMES` (empty without named frames).
     fn frame_names(&self) -> Vec<&'static str>;
     /// `frame_poses(q)` as homogeneous matrices.
@@ -288,6 +313,9 @@ macro_rules! adapter {
             fn jacobian_body(&self, q: &[f64]) -> DMatrix<f64> {
                 let j = $m::Robot::jacobian_body(self, &to_s::<$s, $nq>(q));
                 DMatrix::from_fn(6, $nv, |r, c| j[(r, c)] as f64)
+            }
+            fn friction(&self, qd: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::friction(self, &to_s::<$s, $nv>(qd)))
             }
             fn coriolis_matrix(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
                 let m = $m::Robot::coriolis_matrix(self, &to_s::<$s, $nq>(q), &to_s::<$s, $nv>(qd));

@@ -73,11 +73,25 @@ fn generated_chapter8_functions_equal_the_reference_and_satisfy_the_identities()
                 ef.as_slice(),
                 rtol,
             ));
-            let id = dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &f_tip);
+            // Friction, where the case generates it into the dynamics.
+            let friction = case.spec.friction_in_dynamics(&robot, &qd);
+            let ours = case.imp.friction(&qd);
+            let reference = dynamics_reference::friction_forces(
+                &robot,
+                &qd,
+                match case.spec {
+                    dynamics_tests::Spec::Actuated(.., eps) => eps,
+                    _ => None,
+                },
+            );
+            errs.push(cmp("friction", ours.as_slice(), reference.as_slice(), rtol));
+            let id =
+                dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &f_tip) + &friction;
             let ours = case.imp.inverse_dynamics_with_tip(&q, &qd, &qdd, &f);
             errs.push(cmp("ID with tip", ours.as_slice(), id.as_slice(), rtol));
             let tau: Vec<f64> = id.iter().map(|&x| round(x)).collect();
-            let fd = dynamics_reference::forward_dynamics(&robot, &q, &qd, &tau, &g, &f_tip)
+            let tau_eff: Vec<f64> = tau.iter().zip(&friction).map(|(t, f)| t - f).collect();
+            let fd = dynamics_reference::forward_dynamics(&robot, &q, &qd, &tau_eff, &g, &f_tip)
                 .expect("M is positive definite");
             let ours = case.imp.forward_dynamics_with_tip(&q, &qd, &tau, &f);
             errs.push(cmp(
@@ -123,7 +137,9 @@ fn generated_chapter8_functions_equal_the_reference_and_satisfy_the_identities()
                     &row_major(&DMatrix::identity(6, 6)),
                     rtol * cond.max(1.0),
                 ));
-                let tau_f = case.imp.end_effector_forces(&q, &f);
+                // (Plus the friction a case generates into forward dynamics, which η leaves
+                // out.)
+                let tau_f = case.imp.end_effector_forces(&q, &f) + &friction;
                 let acc = case.imp.forward_dynamics(&q, &qd, tau_f.as_slice());
                 let vdot = &jb * acc + case.imp.jacobian_body_dot(&q, &qd) * &qd_v;
                 let back = &lambda * vdot + eta;
@@ -157,7 +173,7 @@ fn generated_chapter8_functions_equal_the_reference_and_satisfy_the_identities()
                 res.amax()
             );
             let lhs = &m * &x + &h;
-            let rhs = DVector::from_column_slice(&tau) + a.transpose() * &lambda;
+            let rhs = DVector::from_column_slice(&tau_eff) + a.transpose() * &lambda;
             errs.push(cmp(
                 "M q̈ + h = τ + Aᵀλ",
                 lhs.as_slice(),

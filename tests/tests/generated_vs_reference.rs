@@ -61,7 +61,9 @@ fn generated_code_equals_the_reference_implementation() {
                 rtol,
                 atol,
             ));
-            let tau_ref = dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &zero6);
+            let friction = case.spec.friction_in_dynamics(&robot, &qd);
+            let tau_ref =
+                dynamics_reference::inverse_dynamics(&robot, &q, &qd, &qdd, &g, &zero6) + &friction;
             let tau = case.imp.inverse_dynamics(&q, &qd, &qdd);
             worst[3] = worst[3].max(check(
                 case,
@@ -72,8 +74,10 @@ fn generated_code_equals_the_reference_implementation() {
                 atol,
             ));
             let tau_in: Vec<f64> = tau_ref.iter().map(|&x| round(x)).collect();
-            let fd_ref = dynamics_reference::forward_dynamics(&robot, &q, &qd, &tau_in, &g, &zero6)
-                .expect("M is positive definite");
+            let tau_eff: Vec<f64> = tau_in.iter().zip(&friction).map(|(t, f)| t - f).collect();
+            let fd_ref =
+                dynamics_reference::forward_dynamics(&robot, &q, &qd, &tau_eff, &g, &zero6)
+                    .expect("M is positive definite");
             let fd: DVector<f64> = case.imp.forward_dynamics(&q, &qd, &tau_in);
             worst[4] = worst[4].max(check(
                 case,

@@ -178,3 +178,49 @@ fn reference_with_armature_reproduces_pinocchio() {
     }
     println!("panda with armature: rnea, crba, aba worst relative {worst:?}");
 }
+
+/// The generated code of the Panda with the same armature (`Spec::PandaArmature`, compiled
+/// by build.rs) against Pinocchio's `rnea`, `crba` and `aba` with `model.armature` set.
+#[test]
+fn generated_with_armature_reproduces_pinocchio() {
+    let data = json("panda.jacobians.json");
+    let case = &data["armature_case"];
+    let generated = dynamics_tests::CASES
+        .iter()
+        .find(|c| matches!(c.spec, dynamics_tests::Spec::PandaArmature))
+        .expect("the Panda with armature is compiled");
+    let robot = generated.spec.robot();
+    let armature: Vec<f64> = robot.joints.iter().map(|j| j.armature()).collect();
+    assert_eq!(
+        armature,
+        vecf(&case["armature"]),
+        "same armature as Pinocchio's"
+    );
+    let mut worst = [0.0f64; 3];
+    for (k, s) in case["samples"]
+        .as_array()
+        .expect("samples")
+        .iter()
+        .enumerate()
+    {
+        let (q, qd, qdd) = (vecf(&s["q"]), vecf(&s["qd"]), vecf(&s["qdd"]));
+        let imp = generated.imp;
+        worst[0] = worst[0].max(check(
+            &format!("generated panda armature sample {k}: rnea"),
+            imp.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+            &vecf(&s["tau"]),
+        ));
+        worst[1] = worst[1].max(check(
+            &format!("generated panda armature sample {k}: crba"),
+            &row_major(&imp.mass_matrix(&q)),
+            &rows(&s["M"]),
+        ));
+        worst[2] = worst[2].max(check(
+            &format!("generated panda armature sample {k}: aba"),
+            imp.forward_dynamics(&q, &qd, &vecf(&s["tau_in"]))
+                .as_slice(),
+            &vecf(&s["qdd_fd"]),
+        ));
+    }
+    println!("generated panda with armature: rnea, crba, aba worst relative {worst:?}");
+}

@@ -5,6 +5,7 @@
 //! the generated API. [`generate_file`] adds the struct, the `@generated` header and the
 //! formatting.
 
+pub mod friction;
 pub mod function;
 pub mod literal;
 pub mod provenance;
@@ -51,6 +52,11 @@ pub fn prepare(robot: &Robot, options: &Options) -> Result<Robot, Error> {
         robot.gravity = g;
     }
     crate::check::check_robot(&robot)?;
+    if let Some(crate::options::Friction::Smooth(eps)) = options.friction {
+        if !(eps.is_finite() && eps > 0.0) {
+            return Err(Error::InvalidFrictionSmoothing { eps });
+        }
+    }
     Ok(robot)
 }
 
@@ -144,6 +150,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &[q.clone(), qd.clone()],
         nv_usize,
     );
+    let inverse = friction::add_friction(inverse, options);
+    let forward = friction::subtract_friction(forward, options);
+    let friction_fn = friction::friction_function(&robot, options, &nalgebra);
     let kinematics = expand_kinematics(&robot);
     let task_space = expand_task_space(&dynamics, &kinematics);
     let extras = dynamics_extras(
@@ -164,6 +173,32 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         ForwardRoute::Ldlt if robot.has_mimic() => " Method: the mass matrix `M = Jᵀ M_joints J` of the independent coordinates by the composite-rigid-body algorithm, the bias `c + g` by Newton–Euler, then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per coordinate). The articulated-body algorithm does not apply: it assumes one coordinate per joint, and mimic joints share theirs.",
         ForwardRoute::Ldlt => " Method: the mass matrix by the composite-rigid-body algorithm, the bias `c + g` by Newton–Euler, then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per joint). Chosen over the articulated-body algorithm because it needs fewer operations for this robot.",
         ForwardRoute::Aba => " Method: Featherstone's articulated-body algorithm, unrolled (one division per joint). Chosen over CRBA + LDLᵀ because it needs fewer operations for this robot.",
+    };
+    let friction_doc = if options.friction.is_some() {
+        quote! {
+            #[doc = ""]
+            #[doc = " Friction included (generated with friction): `τ_f = friction(q̇)` is added to the joint forces, `τ = M q̈ + c + g + τ_f`."]
+        }
+    } else {
+        quote!()
+    };
+    let armature: Vec<String> = robot
+        .joints
+        .iter()
+        .filter(|j| j.armature() != 0.0)
+        .map(|j| format!("{} {}", inert(&j.name), j.armature()))
+        .collect();
+    let armature_doc = if armature.is_empty() {
+        quote!()
+    } else {
+        let text = format!(
+            " The joints' armature `G² I_rotor` (Modern Robotics §8.9.2) is on the diagonal of `M` and in every function built on it: {}.",
+            armature.join(", ")
+        );
+        quote! {
+            #[doc = ""]
+            #[doc = #text]
+        }
     };
     let limits = limit_consts(&robot, options.scalar, n_usize);
     let allow = allow_attrs();
@@ -187,6 +222,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             /// by joint types), by the composite-rigid-body algorithm.
             #[doc = ""]
             #[doc = #units]
+            #armature_doc
             #[inline]
             #[must_use]
             pub fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
@@ -219,6 +255,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = ""]
             #[doc = #gravity_doc]
             #[doc = #units]
+            #friction_doc
             #[inline]
             #[must_use]
             pub fn inverse_dynamics(&self, q: &#q_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
@@ -231,6 +268,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = ""]
             #[doc = #gravity_doc]
             #[doc = #units]
+            #friction_doc
             #[inline]
             #[must_use]
             pub fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
@@ -255,6 +293,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             pub fn mass_matrix_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #mat_ty {
                 #mass_matrix_dot
             }
+
+            #friction_fn
 
             #extras
 
@@ -360,19 +400,25 @@ fn dynamics_extras(
         (nv_usize, 1),
         Output::Matrix,
     );
-    let id_tip = emit(
-        &t.graph,
-        &[q.clone(), qd.clone(), qdd.clone(), f_tip.clone()],
-        &t.inverse_dynamics_with_tip,
-        (nv_usize, 1),
-        Output::Matrix,
+    let id_tip = friction::add_friction(
+        emit(
+            &t.graph,
+            &[q.clone(), qd.clone(), qdd.clone(), f_tip.clone()],
+            &t.inverse_dynamics_with_tip,
+            (nv_usize, 1),
+            Output::Matrix,
+        ),
+        options,
     );
-    let fd_tip = emit(
-        &t.graph,
-        &[q.clone(), qd.clone(), tau.clone(), f_tip.clone()],
-        &t.forward_dynamics_with_tip,
-        (nv_usize, 1),
-        Output::Matrix,
+    let fd_tip = friction::subtract_friction(
+        emit(
+            &t.graph,
+            &[q.clone(), qd.clone(), tau.clone(), f_tip.clone()],
+            &t.forward_dynamics_with_tip,
+            (nv_usize, 1),
+            Output::Matrix,
+        ),
+        options,
     );
     let guards: Vec<_> = t.pivots.iter().flat_map(|&(a, b)| [a, b]).collect();
     let checked = |value: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
@@ -470,6 +516,10 @@ fn dynamics_extras(
         " `None` when `A M⁻¹ Aᵀ` is singular or nearly so: a pivot `D_k` of its factorisation `L D Lᵀ` is not greater than `√ε` times its diagonal entry (√ε of `{}`), e.g. for dependent constraint rows. Never NaN, never a panic.",
         options.scalar.as_str()
     );
+    let constrained_friction = match options.friction {
+        Some(_) => quote!(let tau = &(tau - self.friction(qd));),
+        None => quote!(),
+    };
     quote! {
         /// The Coriolis matrix `C(q, q̇)` with `C_ij = Σ_k Γ_ijk q̇_k`, `Γ_ijk` the Christoffel
         /// symbols of the first kind of `M` (Modern Robotics §8.1.2): `C q̇ = coriolis(q, q̇)`
@@ -573,6 +623,7 @@ fn dynamics_extras(
             a: &#nalgebra::SMatrix<#scalar, K, #nv>,
             a_dot_qd: &#nalgebra::SVector<#scalar, K>,
         ) -> Option<(#vec_ty, #nalgebra::SVector<#scalar, K>)> {
+            #constrained_friction
             let (l, inv_d, h) = self.mass_matrix_factor(q, qd);
             let free = Self::solve_factored(&l, &inv_d, &(tau - h));
             let mut y = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();

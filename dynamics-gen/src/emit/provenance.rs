@@ -186,6 +186,32 @@ fn describe(generated: &Generated, options: &Options) -> String {
             .collect();
         parts.push(format!("locked {}", locks.join(", ")));
     }
+    let armature: Vec<String> = robot
+        .joints
+        .iter()
+        .filter(|j| j.armature() != 0.0)
+        .map(|j| format!("{} = {}", inert(&j.name), j.armature()))
+        .collect();
+    if !armature.is_empty() {
+        parts.push(format!(
+            "armature {}{}",
+            armature.join(", "),
+            if options.load.armature.is_empty() {
+                ""
+            } else {
+                " (by option)"
+            }
+        ));
+    }
+    match options.friction {
+        Some(crate::options::Friction::Coulomb) => {
+            parts.push("friction in the dynamics".into());
+        }
+        Some(crate::options::Friction::Smooth(eps)) => {
+            parts.push(format!("friction in the dynamics, smoothed with ε = {eps}"));
+        }
+        None => {}
+    }
     parts.join(", ")
 }
 

@@ -97,6 +97,9 @@ pub struct JointFrame {
     /// The joint's home offset: the joint part is `Rot_z(−(θ_i + offset))` or
     /// `Trans_z(−(θ_i + offset))` (the DH θ or d of the home configuration).
     pub offset: f64,
+    /// The armature `G² I_rotor` ([`dynamics_model::Joint::armature`]), added to the
+    /// joint's diagonal entry of M and as `armature · θ̈_i` to its force.
+    pub armature: f64,
 }
 
 /// The whole tree in joint frames, the floating base's inertia, and gravity in {0}.
@@ -393,6 +396,7 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
             p: [p[0], p[1], p[2]],
             inertia,
             offset,
+            armature: joint.armature(),
         });
     }
     let mut base = robot

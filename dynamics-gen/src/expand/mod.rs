@@ -150,11 +150,15 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let mut frames = frames::joint_frames(robot);
     let coupling = mimic::Coupling::new(robot);
     mimic::offsets(&mut frames, robot);
-    // With mimic joints only LDLᵀ applies (see [`mimic`]).
-    let route = if coupling.is_identity() {
-        route
-    } else {
+    // With mimic joints or an armature only LDLᵀ applies (see [`mimic`], and the
+    // articulated-body algorithm's `D_i = I^A_{i,ss}` shortcut, which an armature breaks).
+    let armature: Vec<f64> = frames.joints.iter().map(|f| f.armature).collect();
+    let has_armature = armature.iter().any(|&a| a != 0.0);
+    let ldlt_only = !coupling.is_identity() || has_armature;
+    let route = if ldlt_only {
         Some(ForwardRoute::Ldlt)
+    } else {
+        route
     };
     // k coordinates (n physical joints when none mimics another).
     let k = robot.n_coordinates();
@@ -183,7 +187,16 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let motions = joint_motions(&mut g, &frames, &q);
     let base_inertia = frames.base.as_ref();
     let no_gravity = [0.0; 3];
-    let mass_matrix = crba::crba(&mut g, &motions, base_inertia);
+    let mut mass_matrix = crba::crba(&mut g, &motions, base_inertia);
+    // The armature on the joints' diagonal entries (Modern Robotics §8.9.2).
+    let nv_joints = ov + armature.len();
+    for (i, &a) in armature.iter().enumerate() {
+        if a != 0.0 {
+            let k = (ov + i) * nv_joints + ov + i;
+            let c = g.constant(a);
+            mass_matrix[k] = g.add(mass_matrix[k], c);
+        }
+    }
     let mass_matrix = coupling.matrix(&mut g, &mass_matrix);
     let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: [f64; 3]| {
         let base = base::base_motion(g, floating, &v[..ov], &vd[..ov], gravity);
@@ -202,7 +215,14 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         // The cheapest of the equal forms (ties keep the earlier one), projected onto the
         // coordinates.
         let best = cheaper(g, a, b);
-        let best = cheaper(g, best, c);
+        let mut best = cheaper(g, best, c);
+        // The rotors' inertial forces, armature · θ̈_i.
+        for (i, &arm) in armature.iter().enumerate() {
+            if arm != 0.0 {
+                let t = g.cmul(arm, vd[i]);
+                best[ov + i] = g.add(best[ov + i], t);
+            }
+        }
         coupling.forces(g, &best)
     };
     let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
@@ -220,7 +240,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let aba_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], frames.gravity);
     let mut by_aba: Option<Vec<ExprId>> = None;
     // The articulated-body algorithm has one coordinate per joint: not for mimic joints.
-    let aba_forms = if !coupling.is_identity() {
+    let aba_forms = if ldlt_only {
         &[][..]
     } else {
         &[LinkForce::Spatial, LinkForce::Classical][..]

@@ -127,6 +127,45 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                         Ok(())
                     })?;
                 }
+                "armature" => {
+                    meta.parse_nested_meta(|inner| {
+                        let Some(joint) = inner.path.get_ident().map(ToString::to_string) else {
+                            return Err(inner.error("expected `JOINT = VALUE` (G²·I_rotor in kg·m²)"));
+                        };
+                        let expr: syn::Expr = inner.value()?.parse()?;
+                        let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
+                        match number::evaluate(&tokens) {
+                            Ok(x) if x.is_finite() && x >= 0.0 => {
+                                attr.options.load.armature.push((joint, x));
+                            }
+                            Ok(x) => errors.at(
+                                &expr,
+                                format!("the armature of `{joint}` must be finite and ≥ 0, found {x}: give G²·I_rotor in kg·m² (kg for a prismatic joint)"),
+                            ),
+                            Err(e) => errors.push(e),
+                        }
+                        Ok(())
+                    })?;
+                }
+                "friction" => {
+                    if attr.options.friction.is_none() {
+                        attr.options.friction = Some(crate::options::Friction::Coulomb);
+                    }
+                }
+                "friction_smoothing" => {
+                    let tt: TokenTree = meta.value()?.parse()?;
+                    let v = parse_value(std::slice::from_ref(&tt), errors);
+                    if let Some(x) = v.numbers(errors).and_then(|x| x.first().copied()) {
+                        if x.is_finite() && x > 0.0 {
+                            attr.options.friction = Some(crate::options::Friction::Smooth(x));
+                        } else {
+                            errors.at(
+                                &tt,
+                                format!("`friction_smoothing` must be > 0 (rad/s or m/s), found {x}"),
+                            );
+                        }
+                    }
+                }
                 "method" => {
                     let lit: syn::LitStr = meta.value()?.parse()?;
                     match lit.value().as_str() {
@@ -143,7 +182,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

@@ -66,6 +66,11 @@ pub struct ModelArgs {
     /// none (the end effector has its own functions).
     #[arg(long, value_name = "LINK[,LINK...]", value_delimiter = ',')]
     pub frame: Vec<String>,
+    /// The armature G²·I_rotor of joints (kg·m² or kg), added to the mass matrix's diagonal
+    /// (Pinocchio's `model.armature`); replaces the file's rotor_inertia and gear_ratio for
+    /// those joints. Repeatable and comma-separated (`--armature j1=0.1,j2=0.05`).
+    #[arg(long, value_name = "JOINT=VALUE[,JOINT=VALUE...]", value_parser = parse_armature, value_delimiter = ',')]
+    pub armature: Vec<(String, f64)>,
 }
 
 /// Arguments of `eval`.
@@ -104,12 +109,27 @@ pub struct GenerateArgs {
     /// No `impl dynamics_runtime::Dynamics`: the code then needs only nalgebra (and libm).
     #[arg(long)]
     pub no_runtime_trait: bool,
-    /// Generate only these functions (comma-separated or repeated; default all): mass_matrix,
-    /// coriolis, gravity, inverse_dynamics, forward_dynamics, kinetic_energy, potential_energy,
-    /// end_effector_pose, jacobian_space, jacobian_body, frame_poses, frame_jacobians_space,
-    /// frame_jacobians_body. The runtime trait needs the first five (or --no-runtime-trait).
+    /// Generate only these functions (comma-separated or repeated; default all), named as in
+    /// the generated impl: mass_matrix, coriolis, gravity, inverse_dynamics,
+    /// forward_dynamics, kinetic_energy, mass_matrix_dot, friction, coriolis_matrix,
+    /// mass_matrix_and_bias, end_effector_forces, inverse_dynamics_with_tip,
+    /// forward_dynamics_with_tip, task_space_mass_matrix, task_space_bias,
+    /// constrained_forward_dynamics, potential_energy, end_effector_pose, jacobian_space,
+    /// jacobian_body, jacobian_space_dot, jacobian_body_dot, frame_poses,
+    /// frame_jacobians_space, frame_jacobians_body. The runtime trait needs the first five
+    /// (or --no-runtime-trait).
     #[arg(long, value_name = "FN[,FN...]", value_delimiter = ',')]
     pub functions: Vec<String>,
+    /// Include the joints' friction (damping b q̇ + Coulomb μ sgn(q̇), from the robot file) in
+    /// inverse_dynamics, forward_dynamics, their _with_tip forms and
+    /// constrained_forward_dynamics. Off by default: URDF damping values are often
+    /// placeholders, and Pinocchio's rnea leaves them out. `friction(qd)` exists either way.
+    #[arg(long)]
+    pub friction: bool,
+    /// Smooth Coulomb friction for simulation: μ tanh(q̇/ε) instead of μ sgn(q̇), with this ε
+    /// (rad/s or m/s, > 0). Implies --friction.
+    #[arg(long, value_name = "EPS", value_parser = parse_smoothing)]
+    pub friction_smoothing: Option<f64>,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -124,6 +144,7 @@ impl ModelArgs {
             lock: self.lock.clone(),
             gravity: self.gravity.map(Into::into),
             floating_base: self.floating_base,
+            armature: self.armature.clone(),
         }
     }
 
@@ -184,6 +205,33 @@ pub fn parse_gravity(s: &str) -> Result<[f64; 3], String> {
         }
     }
     Ok(g)
+}
+
+/// `JOINT=VALUE` → `(JOINT, VALUE)` for `--armature` (kg·m² or kg, ≥ 0).
+pub fn parse_armature(s: &str) -> Result<(String, f64), String> {
+    let bad = |why: &str| {
+        format!("`{s}` is not an armature: {why}; write JOINT=VALUE with G²·I_rotor in kg·m² (kg for a prismatic joint), like `shoulder=0.12`")
+    };
+    let (joint, value) = s.split_once('=').ok_or_else(|| bad("there is no `=`"))?;
+    let joint = joint.trim();
+    if joint.is_empty() {
+        return Err(bad("the joint name is empty"));
+    }
+    let value = parse_number(value.trim()).map_err(|e| bad(&e))?;
+    if !(value.is_finite() && value >= 0.0) {
+        return Err(bad("the value must be finite and ≥ 0"));
+    }
+    Ok((joint.to_string(), value))
+}
+
+/// `--friction-smoothing EPS`: finite and > 0.
+fn parse_smoothing(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!(
+            "`{s}` is not a smoothing velocity: give ε > 0 in rad/s or m/s, like `0.01`"
+        )),
+    }
 }
 
 /// `JOINT=VALUE` → `(JOINT, VALUE)`.

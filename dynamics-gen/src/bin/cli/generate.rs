@@ -8,8 +8,14 @@ use dynamics_gen::{Options, Provenance, Scalar};
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
     let (robot, source, bytes) = args.model.load_with_source()?;
-    super::joints::ignored_notes(&robot);
+    let friction = match (args.friction_smoothing, args.friction) {
+        (Some(eps), _) => Some(dynamics_gen::options::Friction::Smooth(eps)),
+        (None, true) => Some(dynamics_gen::options::Friction::Coulomb),
+        (None, false) => None,
+    };
+    super::joints::ignored_notes(&robot, friction.is_some());
     let options = Options {
+        friction,
         name: args.name.clone(),
         scalar: args.scalar,
         no_std: args.no_std,
@@ -72,6 +78,15 @@ fn command(args: &GenerateArgs) -> String {
     if !locks.is_empty() {
         words.extend(["--lock".into(), quote(&locks.join(","))]);
     }
+    let armature: Vec<String> = m.armature.iter().map(|(j, v)| format!("{j}={v}")).collect();
+    if !armature.is_empty() {
+        words.extend(["--armature".into(), quote(&armature.join(","))]);
+    }
+    if let Some(eps) = args.friction_smoothing {
+        words.push(format!("--friction-smoothing={eps}"));
+    } else if args.friction {
+        words.push("--friction".into());
+    }
     if args.nalgebra_path != Options::default().nalgebra_path {
         words.extend(["--nalgebra-path".into(), quote(&args.nalgebra_path)]);
     }
@@ -102,7 +117,7 @@ fn quote(word: &str) -> String {
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
 pub fn stats(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
-    super::joints::ignored_notes(&robot);
+    super::joints::ignored_notes(&robot, false);
     let options = Options {
         load: args.load_options(),
         ..Options::default()

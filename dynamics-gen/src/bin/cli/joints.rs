@@ -79,22 +79,23 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             s.join(", ")
         );
     }
-    ignored_notes(&robot);
+    ignored_notes(&robot, false);
     Ok(())
 }
 
-/// Notes on stderr for what a robot file or option holds that the generated code does not
-/// use yet, so nothing is ignored silently: URDF `<dynamics damping friction>` and the tip.
-pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot) {
+/// A note on stderr when the robot's joints have friction (URDF `<dynamics damping
+/// friction>`, TOML `damping`, `friction`) that the generated dynamics leave out
+/// (`included`: generated with `--friction`), so that nothing is ignored silently.
+pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot, included: bool) {
     let with_dynamics: Vec<&str> = robot
         .joints
         .iter()
         .filter(|j| j.damping != 0.0 || j.friction != 0.0)
         .map(|j| j.name.as_str())
         .collect();
-    if !with_dynamics.is_empty() {
+    if !with_dynamics.is_empty() && !included {
         eprintln!(
-            "note: the <dynamics damping friction> of {} {} not part of the dynamics (friction is not modelled yet; Pinocchio's rnea ignores it too)",
+            "note: the damping and friction of {} {} in the generated `friction(qd)` only, not in inverse or forward dynamics (add --friction to include them; Pinocchio's rnea leaves them out too)",
             with_dynamics.join(", "),
             if with_dynamics.len() == 1 { "is" } else { "are" }
         );
