@@ -54,6 +54,18 @@ macro_rules! no_alloc {
             black_box(Robot.end_effector_pose(black_box(&q)));
             black_box(Robot.jacobian_space(black_box(&q)));
             black_box(Robot.jacobian_body(black_box(&q)));
+            let f = SVector::<$s, 6>::from_fn(|i, _| 0.2 * i as $s - 0.4);
+            black_box(Robot.friction(black_box(&qd)));
+            black_box(Robot.coriolis_matrix(black_box(&q), black_box(&qd)));
+            black_box(Robot.mass_matrix_and_bias(black_box(&q), black_box(&qd)));
+            black_box(Robot.end_effector_forces(black_box(&q), black_box(&f)));
+            black_box(Robot.inverse_dynamics_with_tip(&q, &qd, &x, black_box(&f)));
+            black_box(Robot.forward_dynamics_with_tip(&q, &qd, &x, black_box(&f)));
+            black_box(Robot.task_space_mass_matrix(black_box(&q)));
+            black_box(Robot.task_space_bias(black_box(&q), black_box(&qd)));
+            let a = nalgebra::SMatrix::<$s, 1, $nv>::from_fn(|_, j| 0.3 * j as $s + 0.1);
+            let adq = SVector::<$s, 1>::new(0.2);
+            black_box(Robot.constrained_forward_dynamics(&q, &qd, &x, black_box(&a), &adq));
         }
         let after = ALLOCATIONS.load(Ordering::SeqCst);
         assert_eq!(after - before, 0, "{} allocated", stringify!($m));

@@ -85,6 +85,83 @@ mod release {
                 pub fn jacobian_body(q: &Q) -> SMatrix<$s, 6, $nv> {
                     Robot.jacobian_body(q)
                 }
+                #[no_panic]
+                pub fn friction(qd: &V) -> V {
+                    Robot.friction(qd)
+                }
+                #[no_panic]
+                pub fn coriolis_matrix(q: &Q, qd: &V) -> SMatrix<$s, $nv, $nv> {
+                    Robot.coriolis_matrix(q, qd)
+                }
+                #[no_panic]
+                pub fn mass_matrix_and_bias(q: &Q, qd: &V) -> (SMatrix<$s, $nv, $nv>, V) {
+                    Robot.mass_matrix_and_bias(q, qd)
+                }
+                #[no_panic]
+                pub fn end_effector_forces(q: &Q, f: &SVector<$s, 6>) -> V {
+                    Robot.end_effector_forces(q, f)
+                }
+                #[no_panic]
+                pub fn inverse_dynamics_with_tip(q: &Q, qd: &V, qdd: &V, f: &SVector<$s, 6>) -> V {
+                    Robot.inverse_dynamics_with_tip(q, qd, qdd, f)
+                }
+                #[no_panic]
+                pub fn forward_dynamics_with_tip(q: &Q, qd: &V, tau: &V, f: &SVector<$s, 6>) -> V {
+                    Robot.forward_dynamics_with_tip(q, qd, tau, f)
+                }
+                #[no_panic]
+                pub fn task_space_mass_matrix(q: &Q) -> Option<SMatrix<$s, 6, 6>> {
+                    Robot.task_space_mass_matrix(q)
+                }
+                #[no_panic]
+                pub fn task_space_bias(q: &Q, qd: &V) -> Option<SVector<$s, 6>> {
+                    Robot.task_space_bias(q, qd)
+                }
+                #[no_panic]
+                pub fn constrained_forward_dynamics_1(
+                    q: &Q,
+                    qd: &V,
+                    tau: &V,
+                    a: &SMatrix<$s, 1, $nv>,
+                    adq: &SVector<$s, 1>,
+                ) -> Option<(V, SVector<$s, 1>)> {
+                    Robot.constrained_forward_dynamics(q, qd, tau, a, adq)
+                }
+                #[no_panic]
+                pub fn constrained_forward_dynamics_3(
+                    q: &Q,
+                    qd: &V,
+                    tau: &V,
+                    a: &SMatrix<$s, 3, $nv>,
+                    adq: &SVector<$s, 3>,
+                ) -> Option<(V, SVector<$s, 3>)> {
+                    Robot.constrained_forward_dynamics(q, qd, tau, a, adq)
+                }
+                pub fn extras() -> $s {
+                    let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
+                    let v = V::from_fn(|i, _| 0.1 * i as $s);
+                    let f = SVector::<$s, 6>::from_fn(|i, _| 0.2 * i as $s);
+                    let a1 = SMatrix::<$s, 1, $nv>::from_fn(|_, j| 0.3 * j as $s + 0.1);
+                    let a3 = SMatrix::<$s, 3, $nv>::from_fn(|i, j| (i * j) as $s + 0.1);
+                    let mut e = friction(&v)[0] + coriolis_matrix(&q, &v)[(0, 0)];
+                    e += mass_matrix_and_bias(&q, &v).1[0] + end_effector_forces(&q, &f)[0];
+                    e += inverse_dynamics_with_tip(&q, &v, &v, &f)[0];
+                    e += forward_dynamics_with_tip(&q, &v, &v, &f)[0];
+                    e += task_space_mass_matrix(&q).map_or(0.0, |l| l[(0, 0)]);
+                    e += task_space_bias(&q, &v).map_or(0.0, |x| x[0]);
+                    e += constrained_forward_dynamics_1(
+                        &q,
+                        &v,
+                        &v,
+                        &a1,
+                        &SVector::<$s, 1>::new(0.1),
+                    )
+                    .map_or(0.0, |x| x.1[0]);
+                    e +=
+                        constrained_forward_dynamics_3(&q, &v, &v, &a3, &SVector::<$s, 3>::zeros())
+                            .map_or(0.0, |x| x.1[0]);
+                    e
+                }
                 pub fn call() -> $s {
                     let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
                     let v = V::from_fn(|i, _| 0.1 * i as $s);
@@ -147,6 +224,7 @@ mod release {
     macro_rules! call {
         ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
             assert!($m::call().is_finite());
+            assert!(!$m::extras().is_nan());
         };
     }
 

@@ -980,6 +980,56 @@ fn kinematics_functions(
             #jb
         }
     });
+    // Each frame's own three functions, named after it.
+    let taken: Vec<&str> = crate::options::FUNCTIONS
+        .iter()
+        .copied()
+        .chain(HELPERS.iter().map(|(h, _)| *h))
+        .collect();
+    let stems = text::method_stems(&names, &taken);
+    for ((frame, fk), stem) in robot.frames.iter().zip(&k.frames).zip(&stems) {
+        let pose_fn = Ident::new(&format!("{stem}_pose"), Span::call_site());
+        let js_fn = Ident::new(&format!("{stem}_jacobian_space"), Span::call_site());
+        let jb_fn = Ident::new(&format!("{stem}_jacobian_body"), Span::call_site());
+        let on = match frame.parent {
+            Some(p) => inert(&robot.links[p].name),
+            None => format!("the base {}", inert(&robot.base.name)),
+        };
+        let doc = format!(" Frame {} (on {on}).", inert(&frame.name));
+        let pose = body(&fk.pose, 0, 0, Output::Pose);
+        let js = body(&fk.jacobian_space, 6, nv_usize, Output::Matrix);
+        let jb = body(&fk.jacobian_body, 6, nv_usize, Output::Matrix);
+        out.extend(quote! {
+            /// The pose of this named frame in {0} (m): its entry of `frame_poses`, alone.
+            #[doc = ""]
+            #[doc = #doc]
+            #[inline]
+            #[must_use]
+            pub fn #pose_fn(&self, q: &#q_ty) -> #iso_ty {
+                #pose
+            }
+
+            /// The space Jacobian of this named frame: rows `(ω, v)` in {0}.
+            #[doc = ""]
+            #[doc = #doc]
+            #base_doc
+            #[inline]
+            #[must_use]
+            pub fn #js_fn(&self, q: &#q_ty) -> #jac_ty {
+                #js
+            }
+
+            /// The body Jacobian of this named frame: rows `(ω, v)` in the frame itself.
+            #[doc = ""]
+            #[doc = #doc]
+            #base_doc
+            #[inline]
+            #[must_use]
+            pub fn #jb_fn(&self, q: &#q_ty) -> #jac_ty {
+                #jb
+            }
+        });
+    }
     out
 }
 

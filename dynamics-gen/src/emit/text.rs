@@ -7,8 +7,9 @@
 //! * string literals (`JOINT_NAMES`) — through [`proc_macro2::Literal::string`], which escapes
 //!   quotes, backslashes and control characters itself.
 //!
-//! Identifiers (the struct name) are never taken from a robot file without being checked as
-//! a Rust identifier ([`crate::options::upper_camel`] builds them from ASCII alphanumerics).
+//! Identifiers are never taken from a robot file as they are: the struct name is built from
+//! ASCII alphanumerics ([`crate::options::upper_camel`]) and checked, and the named frames'
+//! methods from [`method_stems`] (ASCII alphanumerics and `_`, lower case).
 
 use std::fmt::Write;
 
@@ -62,7 +63,40 @@ fn needs_escape(c: char) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::inert;
+    use super::{inert, method_stems};
+
+    #[test]
+    fn frame_method_stems_are_snake_case_identifiers_without_collisions() {
+        let names = [
+            "LF_FOOT",
+            "camera link",
+            "end-effector",
+            "3d_cam",
+            "",
+            "a-b",
+            "a_b",
+            "Ünïcode",
+        ];
+        let taken = ["end_effector_pose", "jacobian_space"];
+        let stems = method_stems(&names, &taken);
+        assert_eq!(
+            stems,
+            [
+                "lf_foot",
+                "camera_link",
+                "end_effector_frame",
+                "frame_3d_cam",
+                "frame",
+                "a_b",
+                "a_b_frame",
+                "n_code",
+            ]
+        );
+        for s in &stems {
+            let ident = format!("{s}_jacobian_body");
+            assert!(syn::parse_str::<syn::Ident>(&ident).is_ok(), "{ident}");
+        }
+    }
 
     #[test]
     fn plain_names_read_as_themselves() {
@@ -91,4 +125,57 @@ mod tests {
             assert!(!inner.contains("*/"));
         }
     }
+}
+
+/// The stems of the named frames' methods (`{stem}_pose`, `{stem}_jacobian_space`,
+/// `{stem}_jacobian_body`), one per name: the name in lower case with every character but
+/// ASCII letters and digits replaced by `_` (runs of `_` merged, none at either end), `frame`
+/// when that is empty, prefixed `frame_` when it starts with a digit; then suffixed `_frame` (and a
+/// number) until its three methods collide neither with `taken` (the other generated
+/// methods) nor with an earlier frame's. Deterministic: the same names give the same stems.
+pub fn method_stems(names: &[&str], taken: &[&str]) -> Vec<String> {
+    let mut used: Vec<String> = Vec::new();
+    let methods = |stem: &str| {
+        [
+            format!("{stem}_pose"),
+            format!("{stem}_jacobian_space"),
+            format!("{stem}_jacobian_body"),
+        ]
+    };
+    names
+        .iter()
+        .map(|name| {
+            let mut base = String::new();
+            for c in name.chars() {
+                if c.is_ascii_alphanumeric() {
+                    base.push(c.to_ascii_lowercase());
+                } else if !base.ends_with('_') && !base.is_empty() {
+                    base.push('_');
+                }
+            }
+            let mut base = base.trim_end_matches('_').to_string();
+            if base.is_empty() {
+                base.push_str("frame");
+            } else if base.starts_with(|c: char| c.is_ascii_digit()) {
+                base.insert_str(0, "frame_");
+            }
+            let free = |stem: &str| {
+                methods(stem)
+                    .iter()
+                    .all(|m| !taken.contains(&m.as_str()) && !used.contains(m))
+            };
+            let mut stem = base.clone();
+            let mut k = 1;
+            while !free(&stem) {
+                stem = if k == 1 {
+                    format!("{base}_frame")
+                } else {
+                    format!("{base}_frame_{k}")
+                };
+                k += 1;
+            }
+            used.extend(methods(&stem));
+            stem
+        })
+        .collect()
 }

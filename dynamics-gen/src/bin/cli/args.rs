@@ -27,8 +27,11 @@ pub enum Command {
     /// Each input line is `{"q": [...], "qd": [...], "qdd": [...], "tau": [...], "f_tip": [...]}`
     /// (all but `q` optional, default zero; `f_tip` = (m, f) applied by the end effector, in
     /// {n+1}). Each output line holds `mass_matrix`, `coriolis`, `gravity`,
-    /// `inverse_dynamics`, `forward_dynamics`, `coriolis_matrix` and `end_effector_pose`
-    /// (matrices as lists of rows). A line whose results are not finite (e.g. q̇ = 1e300) is
+    /// `inverse_dynamics`, `forward_dynamics`, `coriolis_matrix`, `mass_matrix_dot`,
+    /// `kinetic_energy`, `potential_energy`, `friction` (b q̇ + μ sgn q̇),
+    /// `end_effector_forces` (J_bᵀ f_tip), `end_effector_pose`, `jacobian_space`,
+    /// `jacobian_body`, `jacobian_space_dot`, `jacobian_body_dot`, `task_space_mass_matrix` and
+    /// `task_space_bias` (null where J_b M⁻¹ J_bᵀ is singular) (matrices as lists of rows). A line whose results are not finite (e.g. q̇ = 1e300) is
     /// an error for that line. With mimic joints, q, qd, qdd and tau hold the independent
     /// joints only (see `joints`).
     Eval(EvalArgs),

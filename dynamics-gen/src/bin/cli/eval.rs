@@ -30,7 +30,20 @@ struct Output {
     inverse_dynamics: Vec<f64>,
     forward_dynamics: Vec<f64>,
     coriolis_matrix: Vec<Vec<f64>>,
+    mass_matrix_dot: Vec<Vec<f64>>,
+    kinetic_energy: f64,
+    potential_energy: f64,
+    friction: Vec<f64>,
+    end_effector_forces: Vec<f64>,
     end_effector_pose: Vec<Vec<f64>>,
+    jacobian_space: Vec<Vec<f64>>,
+    jacobian_body: Vec<Vec<f64>>,
+    jacobian_space_dot: Vec<Vec<f64>>,
+    jacobian_body_dot: Vec<Vec<f64>>,
+    /// `null` where `J_b M⁻¹ J_bᵀ` is singular (and for fewer than six velocities).
+    task_space_mass_matrix: Option<Vec<Vec<f64>>>,
+    /// `null` likewise.
+    task_space_bias: Option<Vec<f64>>,
 }
 
 /// `dynamics-gen eval`: answers every line of stdin; stops at the first bad one unless
@@ -143,7 +156,24 @@ fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
             .to_vec(),
         forward_dynamics: forward.as_slice().to_vec(),
         coriolis_matrix: rows(&dynamics_reference::coriolis_matrix(robot, &q, &qd)),
+        mass_matrix_dot: rows(&dynamics_reference::mass_matrix_dot(robot, &q, &qd)),
+        kinetic_energy: dynamics_reference::kinetic_energy(robot, &q, &qd),
+        potential_energy: dynamics_reference::potential_energy(robot, &q, &g),
+        friction: dynamics_reference::friction_forces(robot, &qd, None)
+            .as_slice()
+            .to_vec(),
+        end_effector_forces: dynamics_reference::end_effector_forces(robot, &q, &f_tip)
+            .as_slice()
+            .to_vec(),
         end_effector_pose: pose_rows(&dynamics_reference::end_effector_pose(robot, &q)),
+        jacobian_space: rows(&dynamics_reference::jacobian_space(robot, &q)),
+        jacobian_body: rows(&dynamics_reference::jacobian_body(robot, &q)),
+        jacobian_space_dot: rows(&dynamics_reference::jacobian_space_dot(robot, &q, &qd)),
+        jacobian_body_dot: rows(&dynamics_reference::jacobian_body_dot(robot, &q, &qd)),
+        task_space_mass_matrix: dynamics_reference::task_space_mass_matrix(robot, &q)
+            .map(|l| l.row_iter().map(|r| r.iter().copied().collect()).collect()),
+        task_space_bias: dynamics_reference::task_space_bias(robot, &q, &qd, &g)
+            .map(|e| e.as_slice().to_vec()),
     }
     .finite()
 }
@@ -152,16 +182,35 @@ impl Output {
     /// The output, or an error naming the first quantity with a NaN or infinite entry (JSON
     /// has no such numbers; serde_json would print `null`).
     fn finite(self) -> Result<Self, String> {
-        let vectors: [(&str, &[f64]); 4] = [
+        let energies = [self.kinetic_energy, self.potential_energy];
+        let empty = Vec::new();
+        let vectors: [(&str, &[f64]); 8] = [
             ("coriolis", &self.coriolis),
             ("gravity", &self.gravity),
             ("inverse_dynamics", &self.inverse_dynamics),
             ("forward_dynamics", &self.forward_dynamics),
+            ("kinetic_energy, potential_energy", &energies),
+            ("friction", &self.friction),
+            ("end_effector_forces", &self.end_effector_forces),
+            (
+                "task_space_bias",
+                self.task_space_bias.as_ref().unwrap_or(&empty),
+            ),
         ];
-        let matrices: [(&str, &Vec<Vec<f64>>); 3] = [
+        let no_rows = Vec::new();
+        let matrices: [(&str, &Vec<Vec<f64>>); 9] = [
             ("mass_matrix", &self.mass_matrix),
             ("coriolis_matrix", &self.coriolis_matrix),
+            ("mass_matrix_dot", &self.mass_matrix_dot),
             ("end_effector_pose", &self.end_effector_pose),
+            ("jacobian_space", &self.jacobian_space),
+            ("jacobian_body", &self.jacobian_body),
+            ("jacobian_space_dot", &self.jacobian_space_dot),
+            ("jacobian_body_dot", &self.jacobian_body_dot),
+            (
+                "task_space_mass_matrix",
+                self.task_space_mass_matrix.as_ref().unwrap_or(&no_rows),
+            ),
         ];
         let bad = vectors
             .iter()
