@@ -126,6 +126,34 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ops: d.graph.op_counts(&d.mass_matrix_dot),
         lines: function_lines(code, "mass_matrix_dot"),
     });
+    // friction(q̇) is written directly: per coordinate a product for the damping and, per
+    // joint with Coulomb friction, a sign test (not counted) or tanh (counted as a product
+    // and a call, like sin/cos), and the sums.
+    let robot = &generated.robot;
+    let mut friction = crate::expr::OpCounts::default();
+    let couplings = robot.couplings();
+    for c in 0..robot.n_coordinates() {
+        let members: Vec<usize> = (0..robot.joints.len())
+            .filter(|&j| couplings[j].coordinate == c)
+            .collect();
+        let damped = members.iter().any(|&j| robot.joints[j].damping != 0.0);
+        let coulomb = members
+            .iter()
+            .filter(|&&j| robot.joints[j].friction != 0.0)
+            .count();
+        let terms = usize::from(damped) + coulomb;
+        friction.mul += usize::from(damped);
+        friction.add_sub += terms.saturating_sub(1);
+        if let Some(crate::options::Friction::Smooth(_)) = generated.friction {
+            friction.mul += 2 * coulomb;
+            friction.sin_cos += coulomb;
+        }
+    }
+    functions.push(FunctionStats {
+        name: "friction",
+        ops: friction,
+        lines: function_lines(code, "friction"),
+    });
     functions.push(FunctionStats {
         name: "coriolis_matrix",
         ops: d.graph.op_counts(&d.coriolis_matrix),

@@ -342,7 +342,11 @@ fn eval_refuses_non_finite_results_and_keep_going_answers_later_lines() {
     assert_eq!(lines[0]["line"], 1);
     assert!(lines[0]["error"].as_str().unwrap().contains("not finite"));
     assert_eq!(floats(&lines[1]["gravity"]).len(), 2);
-    assert!(!stdout.contains("null"), "{stdout}");
+    // null only where documented: the task space of a 2-joint arm (nv < 6).
+    let documented = stdout
+        .replace("\"task_space_mass_matrix\":null", "")
+        .replace("\"task_space_bias\":null", "");
+    assert!(!documented.contains("null"), "{stdout}");
     // Non-finite inputs are refused by name too.
     let out = run_with_stdin(&["eval", "pendulum"], "{\"q\": [0, 1e999]}\n");
     assert!(
@@ -532,4 +536,86 @@ fn functions_selects_what_is_generated() {
         assert_eq!(out.status.code(), Some(1));
         assert!(text(&out.stderr).contains(message), "{}", text(&out.stderr));
     }
+}
+
+#[test]
+fn armature_and_friction_options_change_the_code_and_bad_ones_are_refused() {
+    let plain = text(&run(&["generate", "ur5"]).stdout);
+    let out = run(&[
+        "generate",
+        "ur5",
+        "--armature",
+        "shoulder_pan_joint=0.5,elbow_joint=0.25",
+        "--friction",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let code = text(&out.stdout);
+    assert_ne!(code, plain);
+    assert!(code.contains("armature `shoulder_pan_joint` = 0.5, `elbow_joint` = 0.25 (by option)"));
+    assert!(code.contains("friction in the dynamics"));
+    assert!(code.contains("--armature shoulder_pan_joint=0.5,elbow_joint=0.25 --friction"));
+    assert!(code.contains("tau + self.friction(qd)"));
+    // A TOML robot with damping and Coulomb friction on joint 2.
+    let toml = dynamics_gen::dynamics_model::shipped::get("pendulum")
+        .unwrap()
+        .text
+        .replace(
+            "screw = [1, 0, 0, 0, 0, 0]",
+            "screw = [1, 0, 0, 0, 0, 0]\ndamping = 0.5\nfriction = 1.5",
+        );
+    let path =
+        std::env::temp_dir().join(format!("dynamics-gen-friction-{}.toml", std::process::id()));
+    std::fs::write(&path, toml).unwrap();
+    let file = path.to_str().unwrap();
+    let exact = text(&run(&["generate", file]).stdout);
+    assert!(exact.contains("joint2` (b = 0.5, μ = 1.5)"), "{exact}");
+    assert!(exact.contains("if qd1 > 0.0 { 1.5 } else if qd1 < 0.0 { -1.5 } else { 0.0 }"));
+    assert!(
+        !exact.contains("self.friction(qd)"),
+        "not in the dynamics by default"
+    );
+    let smooth = text(&run(&["generate", file, "--friction-smoothing", "0.02"]).stdout);
+    assert!(smooth.contains(".tanh()") && smooth.contains("smoothed with ε = 0.02"));
+    assert!(smooth.contains("self.friction(qd)"));
+    std::fs::remove_file(&path).ok();
+    for (argv, message) in [
+        (
+            vec!["generate", "ur5", "--armature", "nope=1"],
+            "joint `nope`",
+        ),
+        (
+            vec!["generate", "ur5", "--armature", "elbow_joint=-1"],
+            "must be finite and ≥ 0",
+        ),
+        (
+            vec!["generate", "ur5", "--friction-smoothing", "0"],
+            "not a smoothing velocity",
+        ),
+    ] {
+        let out = run(&argv);
+        assert_ne!(out.status.code(), Some(0));
+        assert!(text(&out.stderr).contains(message), "{}", text(&out.stderr));
+    }
+}
+
+#[test]
+fn eval_gives_the_task_space_where_it_exists() {
+    let out = run_with_stdin(
+        &["eval", "ur5"],
+        "{\"q\": [0.1, -0.8, 1.2, -0.4, 0.9, 0.3], \"qd\": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]}\n{\"q\": [0, 0, 0, 0, 0, 0]}\n",
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    let lines: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let lambda = lines[0]["task_space_mass_matrix"]
+        .as_array()
+        .expect("Λ at a regular state");
+    assert_eq!(lambda.len(), 6);
+    assert_eq!(lines[0]["jacobian_body"].as_array().unwrap().len(), 6);
+    assert_eq!(floats(&lines[0]["task_space_bias"]).len(), 6);
+    // The UR5's home configuration is singular (wrist axes 4 and 6 aligned).
+    assert!(lines[1]["task_space_mass_matrix"].is_null(), "{stdout}");
 }

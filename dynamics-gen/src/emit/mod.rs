@@ -40,6 +40,8 @@ pub struct Generated {
     pub kinematics: Kinematics,
     /// The tip-wrench and task-space functions (for statistics).
     pub task_space: TaskSpace,
+    /// The friction model, when friction is in the dynamics ([`Options::friction`]).
+    pub friction: Option<crate::options::Friction>,
     /// The robot as generated: validated, with the gravity override applied.
     pub robot: Robot,
 }
@@ -324,6 +326,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         dynamics,
         kinematics,
         task_space,
+        friction: options.friction,
         robot,
     })
 }
