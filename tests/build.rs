@@ -21,7 +21,7 @@ struct Case {
 /// The random trees with armature and friction (in the dynamics) compiled as Rust: (seed,
 /// bodies, floating base, Coulomb smoothing ε or exact).
 pub const ACTUATED: &[(u64, usize, bool, Option<f64>)] =
-    &[(401, 7, false, None), (402, 10, true, Some(0.05))];
+    &[(401, 7, false, Some(0.05)), (402, 10, true, None)];
 
 /// The random chains compiled as Rust: n = 1..12, every third joint prismatic on average.
 pub const RANDOM: &[(u64, usize)] = &[

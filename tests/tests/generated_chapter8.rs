@@ -202,3 +202,69 @@ fn generated_chapter8_functions_equal_the_reference_and_satisfy_the_identities()
         worst[1]
     );
 }
+
+/// Power balance with friction along a simulated trajectory: on the compiled random trees
+/// with armature and smoothed friction in the dynamics (fixed base), the generated
+/// `forward_dynamics` integrated by RK4 (1 ms, 0.5 s) under a constant joint torque, with
+/// the work `W = ∫ q̇ᵀ(τ − τ_f(q̇)) dt` integrated alongside: `K + P` (the generated energies)
+/// changes by W, to 1e-6 of the energy that flowed (`∫ |q̇ᵀτ| + |q̇ᵀτ_f| dt`).
+#[test]
+fn generated_energy_balance_with_friction_along_a_trajectory() {
+    let mut checked = 0;
+    for case in CASES {
+        let dynamics_tests::Spec::Actuated(_, _, false, Some(_)) = case.spec else {
+            continue;
+        };
+        let robot = case.spec.robot();
+        let n = robot.nv();
+        let tau: Vec<f64> = (0..n).map(|i| 0.8 * ((i as f64) * 1.3).sin()).collect();
+        // State (q, q̇, W, F): W the work, F the energy that flowed.
+        let rate = |x: &[f64]| -> Vec<f64> {
+            let (q, qd) = (&x[..n], &x[n..2 * n]);
+            let qdd = case.imp.forward_dynamics(q, qd, &tau);
+            let tf = case.imp.friction(qd);
+            let p_in: f64 = (0..n).map(|i| qd[i] * tau[i]).sum();
+            let p_f: f64 = (0..n).map(|i| qd[i] * tf[i]).sum();
+            let mut d: Vec<f64> = qd.to_vec();
+            d.extend(qdd.iter());
+            d.push(p_in - p_f);
+            d.push(p_in.abs() + p_f.abs());
+            d
+        };
+        let energy = |x: &[f64]| {
+            case.imp.kinetic_energy(&x[..n], &x[n..2 * n]) + case.imp.potential_energy(&x[..n])
+        };
+        let mut x: Vec<f64> = (0..n).map(|i| 0.3 * (i as f64).cos()).collect();
+        x.extend((0..n).map(|i| 0.5 - 0.1 * i as f64));
+        x.extend([0.0, 0.0]);
+        let e0 = energy(&x);
+        let h = 1e-3;
+        for _ in 0..500 {
+            let k1 = rate(&x);
+            let at = |k: &[f64], s: f64| -> Vec<f64> {
+                x.iter().zip(k).map(|(a, b)| a + s * b).collect()
+            };
+            let k2 = rate(&at(&k1, h / 2.0));
+            let k3 = rate(&at(&k2, h / 2.0));
+            let k4 = rate(&at(&k3, h));
+            for i in 0..x.len() {
+                x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            }
+        }
+        let (work, flow) = (x[2 * n], x[2 * n + 1]);
+        let change = energy(&x) - e0;
+        let err = (change - work).abs();
+        println!(
+            "{}: ΔE = {change:.6e}, ∫q̇ᵀ(τ − τ_f) = {work:.6e}, flow {flow:.3e}, error {:.2e} of the flow",
+            case.module,
+            err / flow
+        );
+        assert!(
+            err <= 1e-6 * flow,
+            "{}: energy balance off by {err:e}",
+            case.module
+        );
+        checked += 1;
+    }
+    assert!(checked >= 1);
+}

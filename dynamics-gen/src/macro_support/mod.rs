@@ -67,7 +67,10 @@
 //! base), `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
 //! and for URDF `tip = "LINK"` (the end effector of `end_effector_pose` and the Jacobians),
 //! `frames(LINK, ..)` (the named frames of `frame_poses` and the frame Jacobians; default: a
-//! tree's leaf links) and `lock(JOINT = VALUE, ..)`.
+//! tree's leaf links) and `lock(JOINT = VALUE, ..)`; `functions(NAME, ..)` (generate only
+//! these), `armature(JOINT = VALUE, ..)` (G²·I_rotor, kg·m²), `friction` (the joints'
+//! damping and Coulomb friction in inverse and forward dynamics) and
+//! `friction_smoothing = EPS` (the same with `μ tanh(q̇/ε)`).
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the
 //! file changes. The environment variable [`derive::MANIFEST_DIR_OVERRIDE`] replaces
 //! `CARGO_MANIFEST_DIR` when set.

@@ -421,3 +421,30 @@ fn mimic_in_the_inline_grammar() {
         "{errors:?}"
     );
 }
+
+#[test]
+fn rotor_and_friction_fields_reach_the_joints_and_the_mass_matrix() {
+    let make = |rotor: TokenStream| {
+        inline_robot(quote! {
+            pub struct Arm;
+            joint revolute j1 {
+                screw: [0, 0, 1, 0, 0, 0],
+                #rotor
+                link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+            },
+        })
+    };
+    let plain = make(quote!());
+    let geared = make(quote!(rotor_inertia: 0.01, gear_ratio: 10, damping: 0.5, friction: 1.5,));
+    let joint = &geared.joints[0];
+    assert_eq!((joint.damping, joint.friction), (0.5, 1.5));
+    assert!(
+        (joint.armature() - 1.0).abs() < 1e-15,
+        "G² I_rotor = 100 · 0.01"
+    );
+    let m = |r: &Robot| {
+        let d = crate::expand::expand(r);
+        d.graph.eval(&d.mass_matrix, &|_| 0.3)[0]
+    };
+    assert!((m(&geared) - m(&plain) - 1.0).abs() < 1e-12);
+}
