@@ -5,8 +5,9 @@ use dynamics_gen::Builder;
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let robots = [
-        // The UR5 of example-robot-data (URDF).
-        Builder::new("ur5").no_std(true),
+        // The UR5 of example-robot-data (URDF), with its forearm as a named frame (for the
+        // elbow: `forearm_link_pose`, `forearm_link_jacobian_space`, …).
+        Builder::new("ur5").no_std(true).frames(["forearm_link"]),
         // The rotational pendulum of Modern Robotics Exercise 8.4.
         Builder::new("pendulum").no_std(true),
         // The UR5 of the Modern Robotics course, with the gravity of its reference data.

@@ -151,3 +151,46 @@ fn ur5_kinematics_match_the_reference() {
         );
     }
 }
+
+/// The UR5's named frame `forearm_link` (`.frames(["forearm_link"])` in build.rs): its own
+/// three functions, named after it, equal its entries of the frame arrays and the reference.
+#[test]
+fn ur5_named_frame_matches_the_reference() {
+    use generated_example::ur5::Ur5;
+    let robot = dynamics_model::load(
+        "ur5",
+        &dynamics_model::LoadOptions {
+            frames: Some(vec!["forearm_link".into()]),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(Ur5::FRAME_NAMES, ["forearm_link"]);
+    let frame = &robot.frames[0];
+    let mut rng = Lcg(5);
+    for _ in 0..20 {
+        let q = rng.vector::<6>(3.0);
+        let qs = q.as_slice();
+        let pose = Ur5.forearm_link_pose(&q);
+        assert_eq!(pose, Ur5.frame_poses(&q)[0]);
+        close(
+            "forearm_link_pose",
+            pose.to_homogeneous().as_slice(),
+            dynamics_reference::frame_pose(&robot, frame, qs).as_slice(),
+        );
+        let j_s = Ur5.forearm_link_jacobian_space(&q);
+        assert_eq!(j_s, Ur5.frame_jacobians_space(&q)[0]);
+        close(
+            "forearm_link_jacobian_space",
+            j_s.as_slice(),
+            dynamics_reference::frame_jacobian_space(&robot, frame, qs).as_slice(),
+        );
+        let j_b = Ur5.forearm_link_jacobian_body(&q);
+        assert_eq!(j_b, Ur5.frame_jacobians_body(&q)[0]);
+        close(
+            "forearm_link_jacobian_body",
+            j_b.as_slice(),
+            dynamics_reference::frame_jacobian_body(&robot, frame, qs).as_slice(),
+        );
+    }
+}
