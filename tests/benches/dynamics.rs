@@ -50,6 +50,19 @@ macro_rules! bench_robot {
         group.bench_function("generated/coriolis", |b| {
             b.iter(|| Gen.coriolis(black_box(&q), black_box(&qd)))
         });
+        // One call for M and h = c + g, against two (M, then h as τ at q̈ = 0).
+        let zero = SVector::<f64, $nv>::zeros();
+        group.bench_function("generated/mass_matrix_and_bias", |b| {
+            b.iter(|| Gen.mass_matrix_and_bias(black_box(&q), black_box(&qd)))
+        });
+        group.bench_function("generated/mass_matrix+bias_two_calls", |b| {
+            b.iter(|| {
+                (
+                    Gen.mass_matrix(black_box(&q)),
+                    Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&zero)),
+                )
+            })
+        });
         group.bench_function("generated/forward_dynamics", |b| {
             b.iter(|| Gen.forward_dynamics(black_box(&q), black_box(&qd), black_box(&tau)))
         });
