@@ -158,9 +158,19 @@ fn describe(generated: &Generated, options: &Options) -> String {
             }
         ));
     }
-    if let Some(tip) = &options.load.tip {
-        parts.push(format!("tip {}", inert(tip)));
-    }
+    parts.push(format!(
+        "end effector {}{}{}",
+        inert(&robot.end_effector.name),
+        match robot.end_effector.parent {
+            Some(p) => format!(" on link {}", inert(&robot.links[p].name)),
+            None => format!(" on the base {}", inert(&robot.base.name)),
+        },
+        if options.load.tip.is_some() {
+            " (by option)"
+        } else {
+            ""
+        }
+    ));
     if !robot.frames.is_empty() {
         let names: Vec<String> = robot.frames.iter().map(|f| inert(&f.name)).collect();
         parts.push(format!(

@@ -117,7 +117,6 @@ fn quote(word: &str) -> String {
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
 pub fn stats(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
-    super::joints::ignored_notes(&robot, false);
     let options = Options {
         load: args.load_options(),
         ..Options::default()

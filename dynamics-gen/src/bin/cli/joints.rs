@@ -79,7 +79,6 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             s.join(", ")
         );
     }
-    ignored_notes(&robot, false);
     Ok(())
 }
 
