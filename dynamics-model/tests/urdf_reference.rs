@@ -26,6 +26,7 @@ fn compare(urdf: &str, json: &str) -> (f64, f64) {
         lock: Vec::new(),
         floating_base: false,
         gravity: None,
+        armature: Vec::new(),
     };
     let robot = load_text(&text, urdf, &options).expect("loads");
 

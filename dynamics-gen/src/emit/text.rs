@@ -61,6 +61,59 @@ fn needs_escape(c: char) -> bool {
         )
 }
 
+/// The stems of the named frames' methods (`{stem}_pose`, `{stem}_jacobian_space`,
+/// `{stem}_jacobian_body`), one per name: the name in lower case with every character but
+/// ASCII letters and digits replaced by `_` (runs of `_` merged, none at either end), `frame`
+/// when that is empty, prefixed `frame_` when it starts with a digit; then suffixed `_frame` (and a
+/// number) until its three methods collide neither with `taken` (the other generated
+/// methods) nor with an earlier frame's. Deterministic: the same names give the same stems.
+pub fn method_stems(names: &[&str], taken: &[&str]) -> Vec<String> {
+    let mut used: Vec<String> = Vec::new();
+    let methods = |stem: &str| {
+        [
+            format!("{stem}_pose"),
+            format!("{stem}_jacobian_space"),
+            format!("{stem}_jacobian_body"),
+        ]
+    };
+    names
+        .iter()
+        .map(|name| {
+            let mut base = String::new();
+            for c in name.chars() {
+                if c.is_ascii_alphanumeric() {
+                    base.push(c.to_ascii_lowercase());
+                } else if !base.ends_with('_') && !base.is_empty() {
+                    base.push('_');
+                }
+            }
+            let mut base = base.trim_end_matches('_').to_string();
+            if base.is_empty() {
+                base.push_str("frame");
+            } else if base.starts_with(|c: char| c.is_ascii_digit()) {
+                base.insert_str(0, "frame_");
+            }
+            let free = |stem: &str| {
+                methods(stem)
+                    .iter()
+                    .all(|m| !taken.contains(&m.as_str()) && !used.contains(m))
+            };
+            let mut stem = base.clone();
+            let mut k = 1;
+            while !free(&stem) {
+                stem = if k == 1 {
+                    format!("{base}_frame")
+                } else {
+                    format!("{base}_frame_{k}")
+                };
+                k += 1;
+            }
+            used.extend(methods(&stem));
+            stem
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::{inert, method_stems};
@@ -125,57 +178,4 @@ mod tests {
             assert!(!inner.contains("*/"));
         }
     }
-}
-
-/// The stems of the named frames' methods (`{stem}_pose`, `{stem}_jacobian_space`,
-/// `{stem}_jacobian_body`), one per name: the name in lower case with every character but
-/// ASCII letters and digits replaced by `_` (runs of `_` merged, none at either end), `frame`
-/// when that is empty, prefixed `frame_` when it starts with a digit; then suffixed `_frame` (and a
-/// number) until its three methods collide neither with `taken` (the other generated
-/// methods) nor with an earlier frame's. Deterministic: the same names give the same stems.
-pub fn method_stems(names: &[&str], taken: &[&str]) -> Vec<String> {
-    let mut used: Vec<String> = Vec::new();
-    let methods = |stem: &str| {
-        [
-            format!("{stem}_pose"),
-            format!("{stem}_jacobian_space"),
-            format!("{stem}_jacobian_body"),
-        ]
-    };
-    names
-        .iter()
-        .map(|name| {
-            let mut base = String::new();
-            for c in name.chars() {
-                if c.is_ascii_alphanumeric() {
-                    base.push(c.to_ascii_lowercase());
-                } else if !base.ends_with('_') && !base.is_empty() {
-                    base.push('_');
-                }
-            }
-            let mut base = base.trim_end_matches('_').to_string();
-            if base.is_empty() {
-                base.push_str("frame");
-            } else if base.starts_with(|c: char| c.is_ascii_digit()) {
-                base.insert_str(0, "frame_");
-            }
-            let free = |stem: &str| {
-                methods(stem)
-                    .iter()
-                    .all(|m| !taken.contains(&m.as_str()) && !used.contains(m))
-            };
-            let mut stem = base.clone();
-            let mut k = 1;
-            while !free(&stem) {
-                stem = if k == 1 {
-                    format!("{base}_frame")
-                } else {
-                    format!("{base}_frame_{k}")
-                };
-                k += 1;
-            }
-            used.extend(methods(&stem));
-            stem
-        })
-        .collect()
 }
