@@ -89,18 +89,16 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
     let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
     let body = |outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
-        FunctionBody {
-            graph: &dynamics.graph,
+        let shape = (nv_usize, cols);
+        body_tokens(
+            &dynamics.graph,
             args,
             outputs,
-            rows: nv_usize,
-            cols,
-            output: Output::Matrix,
-            scalar: options.scalar,
-            no_std: options.no_std,
-            nalgebra: &nalgebra,
-        }
-        .tokens()
+            shape,
+            Output::Matrix,
+            options,
+            &nalgebra,
+        )
     };
     let q = Arg {
         name: "q",
@@ -135,18 +133,15 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &[q.clone(), qd.clone(), tau.clone()],
         1,
     );
-    let kinetic = FunctionBody {
-        graph: &dynamics.graph,
-        args: &[q.clone(), qd.clone()],
-        outputs: &[dynamics.kinetic_energy],
-        rows: 1,
-        cols: 1,
-        output: Output::Scalar,
-        scalar: options.scalar,
-        no_std: options.no_std,
-        nalgebra: &nalgebra,
-    }
-    .tokens();
+    let kinetic = body_tokens(
+        &dynamics.graph,
+        &[q.clone(), qd.clone()],
+        &[dynamics.kinetic_energy],
+        (1, 1),
+        Output::Scalar,
+        options,
+        &nalgebra,
+    );
     let mass_matrix_dot = body(
         &dynamics.mass_matrix_dot,
         &[q.clone(), qd.clone()],
@@ -331,6 +326,31 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     })
 }
 
+/// The body of a generated function: `outputs` of `graph` as `output`, `(rows, cols)` its
+/// matrix shape, in the scalar type and trigonometry of `options`.
+fn body_tokens(
+    graph: &crate::expr::ExprGraph,
+    args: &[Arg],
+    outputs: &[crate::expr::ExprId],
+    (rows, cols): (usize, usize),
+    output: Output,
+    options: &Options,
+    nalgebra: &TokenStream,
+) -> TokenStream {
+    FunctionBody {
+        graph,
+        args,
+        outputs,
+        rows,
+        cols,
+        output,
+        scalar: options.scalar,
+        no_std: options.no_std,
+        nalgebra,
+    }
+    .tokens()
+}
+
 /// Input groups of the private `solve_factored` helper: the packed factor `L` and `1/D`.
 const FACTOR_L: u8 = 5;
 const FACTOR_INV_D: u8 = 6;
@@ -364,18 +384,15 @@ fn dynamics_extras(
                 outputs: &[crate::expr::ExprId],
                 (rows, cols): (usize, usize),
                 output: Output| {
-        FunctionBody {
+        body_tokens(
             graph,
             args,
             outputs,
-            rows,
-            cols,
+            (rows, cols),
             output,
-            scalar: options.scalar,
-            no_std: options.no_std,
+            options,
             nalgebra,
-        }
-        .tokens()
+        )
     };
     let (q, qd, qdd, tau) = (q.clone(), qd.clone(), qdd.clone(), tau.clone());
     let coriolis_matrix = emit(
@@ -788,34 +805,30 @@ fn kinematics_functions(
     let iso_ty = quote!(#nalgebra::Isometry3<#scalar>);
     let jac_ty = quote!(#nalgebra::SMatrix<#scalar, 6, #nv>);
     let body = |outputs: &[crate::expr::ExprId], rows: usize, cols: usize, output: Output| {
-        FunctionBody {
-            graph: &k.graph,
-            args: std::slice::from_ref(q),
+        let q = std::slice::from_ref(q);
+        body_tokens(
+            &k.graph,
+            q,
             outputs,
-            rows,
-            cols,
+            (rows, cols),
             output,
-            scalar: options.scalar,
-            no_std: options.no_std,
+            options,
             nalgebra,
-        }
-        .tokens()
+        )
     };
     let ee = &k.end_effector;
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
     let dot = |outputs: &[crate::expr::ExprId]| {
-        FunctionBody {
-            graph: &k.graph,
+        let shape = (6, nv_usize);
+        body_tokens(
+            &k.graph,
             args,
             outputs,
-            rows: 6,
-            cols: nv_usize,
-            output: Output::Matrix,
-            scalar: options.scalar,
-            no_std: options.no_std,
+            shape,
+            Output::Matrix,
+            options,
             nalgebra,
-        }
-        .tokens()
+        )
     };
     let j_s_dot = dot(&k.jacobian_space_dot);
     let j_b_dot = dot(&k.jacobian_body_dot);
