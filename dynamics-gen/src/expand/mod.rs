@@ -36,6 +36,12 @@
 //! physical joints unchanged, and their outputs are projected (`τ_L = Σ m_f τ_f`,
 //! `M = Jᵀ M J`). Forward dynamics then takes [`ForwardRoute::Ldlt`] alone: the
 //! articulated-body algorithm assumes one coordinate per joint and is not expanded.
+//!
+//! Armature ([`dynamics_model::Joint::armature`], `G² I_rotor`): added to the joint's diagonal
+//! entry of M after CRBA and as `armature · θ̈_i` to its Newton–Euler force, so every output
+//! built on them (forward dynamics, energies, task space) has it. Forward dynamics then takes
+//! [`ForwardRoute::Ldlt`] alone too: the articulated-body expansion's shortcut `D_i =
+//! I^A_{i,ss}` (row and column s of `I^a` vanish) no longer holds once `D_i` has the armature.
 
 pub mod aba;
 pub mod base;
@@ -116,8 +122,9 @@ pub struct Dynamics {
     pub coriolis_matrix: Vec<ExprId>,
     /// `h(q, ν) = c(q, ν) + g(q)`: Newton–Euler with `ν̇ = 0` (the bias of forward dynamics).
     pub bias: Vec<ExprId>,
-    /// `L` of `M = Lᵀ D L` ([`ldlt::ltdl_factor`]): nv×nv row-major, unit diagonal (the
-    /// diagonal and upper entries are not set; read the strictly lower triangle).
+    /// `L` of `M = Lᵀ D L` ([`ldlt::ltdl_factor`]): nv×nv row-major, its strictly lower
+    /// triangle (L has a unit diagonal; the other entries hold leftovers of the
+    /// factorisation and must not be read).
     pub mass_matrix_factor: Vec<ExprId>,
     /// `1 / D_k` of the same factorisation.
     pub mass_matrix_inv_d: Vec<ExprId>,
