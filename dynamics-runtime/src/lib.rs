@@ -20,8 +20,8 @@
 //! ```
 //!
 //! Sizes: `NQ` is the length of the configuration vector `q`, `NV` that of velocities,
-//! accelerations and forces. For the fixed-base serial robots generated today both equal the
-//! number of joints n.
+//! accelerations and forces: both the number of joint coordinates n on a fixed base, n + 7
+//! and n + 6 on a floating base (a position and a quaternion, a twist).
 #![no_std]
 
 use nalgebra::{SMatrix, SVector, Scalar};
