@@ -504,3 +504,22 @@ pub fn assert_close(what: &str, x: &[f64], y: &[f64], rtol: f64, atol: f64) -> (
     );
     (err, scale)
 }
+
+/// A JSON array of numbers as a vector (the reference data files).
+pub fn vecf(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+/// A JSON matrix (a list of rows) as its entries, row-major.
+pub fn rows(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().expect("rows").iter().flat_map(vecf).collect()
+}
+
+/// A matrix's entries, row-major.
+pub fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
+    m.transpose().as_slice().to_vec()
+}

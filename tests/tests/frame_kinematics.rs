@@ -12,15 +12,12 @@ use dynamics_gen::expr::Input;
 use dynamics_model::lie::{exp6, xyz_rpy};
 use dynamics_model::random::{random_tree, Rng, TreeSpec};
 use dynamics_model::{Frame, Robot};
-use nalgebra::{DMatrix, Matrix4, Vector6};
+use dynamics_tests::row_major;
+use nalgebra::{Matrix4, Vector6};
 
 fn check(what: &str, x: &[f64], y: &[f64]) -> f64 {
     let (err, scale) = dynamics_tests::assert_close(what, x, y, 1e-9, 1e-12);
     err / (1e-9 * scale + 1e-12)
-}
-
-fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
-    m.transpose().as_slice().to_vec()
 }
 
 fn pose_entries(t: &Matrix4<f64>) -> Vec<f64> {

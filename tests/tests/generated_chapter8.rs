@@ -16,6 +16,7 @@
 //! solves.
 
 use dynamics_model::random::Rng;
+use dynamics_tests::row_major;
 use dynamics_tests::{Case, CASES};
 use nalgebra::{DMatrix, DVector, Vector6};
 
@@ -23,10 +24,6 @@ fn check(case: &Case, what: &str, x: &[f64], y: &[f64], rtol: f64, atol: f64) ->
     let what = format!("{} {what}", case.module);
     let (err, scale) = dynamics_tests::assert_close(&what, x, y, rtol, atol);
     err / (rtol * scale + atol).max(1e-300)
-}
-
-fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
-    m.transpose().as_slice().to_vec()
 }
 
 #[test]

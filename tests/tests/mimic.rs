@@ -8,17 +8,10 @@
 use dynamics_gen::expand::{expand, ForwardRoute, Q, QD, QDD, TAU};
 use dynamics_gen::expr::{ExprId, Input};
 use dynamics_model::random::{random_mimics, random_tree, Rng, TreeSpec};
+use dynamics_tests::vecf;
 use dynamics_tests::{data_dir, Spec, CASES};
 use nalgebra::Vector6;
 use serde_json::Value;
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
 
 #[test]
 fn generated_talos_grippers_reproduce_pinocchio() {

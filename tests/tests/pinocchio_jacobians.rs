@@ -8,7 +8,8 @@
 
 use dynamics_model::{LoadOptions, Robot};
 use dynamics_tests::{data_dir, Spec, CASES};
-use nalgebra::{DMatrix, Vector3, Vector6};
+use dynamics_tests::{row_major, rows, vecf};
+use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
 
 const ROBOTS: [&str; 4] = ["ur5", "panda", "rand7", "double_pendulum"];
@@ -16,22 +17,6 @@ const ROBOTS: [&str; 4] = ["ur5", "panda", "rand7", "double_pendulum"];
 fn json(name: &str) -> Value {
     let text = std::fs::read_to_string(data_dir().join("reference").join(name)).expect("data");
     serde_json::from_str(&text).expect("json")
-}
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
-
-fn rows(v: &Value) -> Vec<f64> {
-    v.as_array().expect("rows").iter().flat_map(vecf).collect()
-}
-
-fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
-    m.transpose().as_slice().to_vec()
 }
 
 /// A Pinocchio Jacobian (rows `(v, ω)`, row-major) in our row order `(ω, v)`, row-major.

@@ -6,28 +6,13 @@
 
 use dynamics_model::LoadOptions;
 use dynamics_tests::{data_dir, Spec, CASES};
-use nalgebra::{DMatrix, Vector3, Vector6};
+use dynamics_tests::{row_major, rows, vecf};
+use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
 
 fn json(name: &str) -> Value {
     let text = std::fs::read_to_string(data_dir().join("reference").join(name)).expect("data");
     serde_json::from_str(&text).expect("json")
-}
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
-
-fn rows(v: &Value) -> Vec<f64> {
-    v.as_array().expect("rows").iter().flat_map(vecf).collect()
-}
-
-fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
-    m.transpose().as_slice().to_vec()
 }
 
 fn check(what: &str, x: &[f64], y: &[f64]) -> f64 {

@@ -7,20 +7,13 @@ use dynamics_model::lie::ad;
 use dynamics_model::Robot;
 use dynamics_reference as dr;
 use dynamics_tests::data_dir;
+use dynamics_tests::vecf;
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix4, Matrix6, Vector2, Vector3, Vector6};
 use serde_json::Value;
 
 fn seed() -> Value {
     let text = std::fs::read_to_string(data_dir().join("seed-cases.json")).expect("seed cases");
     serde_json::from_str(&text).expect("json")
-}
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
 }
 
 /// A row-major JSON matrix.

@@ -18,11 +18,8 @@ use dynamics_gen::expand::{expand, kinematics::expand_kinematics, Q, QD, QDD, TA
 use dynamics_gen::expr::{ExprId, Input};
 use dynamics_model::random::{random_mimics, random_tree, Rng, TreeSpec};
 use dynamics_model::Robot;
+use dynamics_tests::row_major;
 use nalgebra::{DMatrix, DVector, Vector6};
-
-fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
-    m.transpose().as_slice().to_vec()
-}
 
 fn robot(seed: u64) -> Robot {
     let spec = TreeSpec {

@@ -7,6 +7,7 @@
 //! Pinocchio's free flyer orders the base velocity and wrench linear part first
 //! (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`); ours angular first. [`pin`] maps the indices.
 
+use dynamics_tests::vecf;
 use dynamics_tests::{data_dir, Spec, CASES};
 use serde_json::Value;
 
@@ -14,14 +15,6 @@ fn json(name: &str) -> Value {
     let path = data_dir().join(format!("reference/trees/{name}.json"));
     let text = std::fs::read_to_string(&path).expect("reference data");
     serde_json::from_str(&text).expect("json")
-}
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
 }
 
 /// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
