@@ -4,7 +4,7 @@
 
 use super::derivatives::{expand_derivatives, Derivatives};
 use super::*;
-use dynamics_model::random::{random_chain, random_tree, ChainSpec, Rng, TreeSpec};
+use dynamics_model::random::{random_chain, random_mimics, random_tree, ChainSpec, Rng, TreeSpec};
 use dynamics_model::Robot;
 
 /// Central-difference step.
@@ -34,10 +34,19 @@ fn max_abs(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |m, a| m.max(a.abs()))
 }
 
-/// The robots: 30 seeds, trees and chains, fixed and floating, a quarter prismatic.
+/// The robots: 30 seeds, trees and chains, fixed and floating, a quarter prismatic; seeds
+/// 30.. with mimic joints.
 fn robot(seed: u64) -> Robot {
     let dof = 1 + (seed as usize * 5) % 9;
-    if seed % 5 == 4 {
+    if seed >= 30 {
+        let spec = TreeSpec {
+            dof: dof + 2,
+            prismatic: 0.25,
+            branching: 0.4,
+            floating: seed % 2 == 1,
+        };
+        random_mimics(random_tree(seed, spec), seed, 0.4)
+    } else if seed % 5 == 4 {
         random_chain(
             seed,
             ChainSpec {
@@ -88,7 +97,7 @@ fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     ]
 }
 
-/// `q ⊕ t e_j`: the configuration moved by `t` along tangent direction `j` (on a floating
+/// `q ⊕ t e_j` (tangent direction j of nv): the configuration moved by `t` along tangent direction `j` (on a floating
 /// base `ω_b = e_j` turns the quaternion by `exp(½ t e_j)` on the right, `v_b = e_{j−3}`
 /// moves `p` by `t R e_{j−3}`).
 fn retract(q: &[f64], floating: bool, j: usize, t: f64) -> Vec<f64> {
@@ -118,15 +127,19 @@ fn retract(q: &[f64], floating: bool, j: usize, t: f64) -> Vec<f64> {
     q
 }
 
-/// Asserts `got` (nv×nv row-major) ≈ `want` column by column.
-fn assert_close(what: &str, seed: u64, got: &[f64], want: &[f64], tol: f64) {
+/// Asserts `got` ≈ `want` entry by entry, relative to `want`'s largest entry (+1); returns
+/// the largest relative error.
+fn assert_close(what: &str, seed: u64, got: &[f64], want: &[f64], tol: f64) -> f64 {
     let scale = max_abs(want) + 1.0;
+    let mut worst = 0.0f64;
     for (k, (x, y)) in got.iter().zip(want).enumerate() {
         assert!(
             (x - y).abs() <= tol * scale,
             "seed {seed} {what}[{k}]: {x} vs {y} (scale {scale})"
         );
+        worst = worst.max((x - y).abs() / scale);
     }
+    worst
 }
 
 /// Central differences of `roots` (length nv) along the nv tangent directions of q or along
@@ -161,11 +174,19 @@ fn central(
 
 #[test]
 fn derivatives_match_central_differences() {
-    for seed in 0..30u64 {
+    let (mut worst, mut mimics) = (0.0f64, 0);
+    for seed in 0..36u64 {
         let r = robot(seed);
+        mimics += r.dof() - r.n_coordinates();
         let floating = r.base.floating;
-        let d = expand(&r);
+        // Both forward-dynamics routes feed ν̇ := FD.
+        let d = if seed % 3 == 0 {
+            expand_with_route(&r, ForwardRoute::Aba)
+        } else {
+            expand(&r)
+        };
         let x = expand_derivatives(&d);
+        x.graph.verify().unwrap();
         let nv = d.nv;
         assert_eq!(x.nv, nv);
         let s = state(&r, seed, if seed % 4 == 3 { 1.7 } else { 1.0 });
@@ -173,36 +194,42 @@ fn derivatives_match_central_differences() {
         let tol = 1e-6;
         let id = &d.inverse_dynamics;
         let fd = &d.forward_dynamics;
-        assert_close(
+        worst = worst.max(assert_close(
             "∂τ/∂q",
             seed,
             &ev(&x.d_tau_dq),
             &central(&d, id, &s, floating, false),
             tol,
-        );
-        assert_close(
+        ));
+        worst = worst.max(assert_close(
             "∂τ/∂ν",
             seed,
             &ev(&x.d_tau_dqd),
             &central(&d, id, &s, floating, true),
             tol,
-        );
+        ));
         let dg = central(&d, &d.gravity, &s, floating, false);
-        assert_close("∂g/∂q", seed, &ev(&x.gravity_derivative), &dg, tol);
-        assert_close(
+        worst = worst.max(assert_close(
+            "∂g/∂q",
+            seed,
+            &ev(&x.gravity_derivative),
+            &dg,
+            tol,
+        ));
+        worst = worst.max(assert_close(
             "∂ν̇/∂q",
             seed,
             &ev(&x.d_qdd_dq),
             &central(&d, fd, &s, floating, false),
             tol,
-        );
-        assert_close(
+        ));
+        worst = worst.max(assert_close(
             "∂ν̇/∂ν",
             seed,
             &ev(&x.d_qdd_dqd),
             &central(&d, fd, &s, floating, true),
             tol,
-        );
+        ));
         // M⁻¹ M = I, M⁻¹ symmetric.
         let m = eval_at(&d.graph, &d.mass_matrix, &s[0], &s[1], &s[2], &s[3]);
         let mi = ev(&x.mass_matrix_inverse);
@@ -236,6 +263,8 @@ fn derivatives_match_central_differences() {
             }
         }
     }
+    assert!(mimics > 0, "no mimic joints drawn");
+    eprintln!("worst relative error against central differences: {worst:e}");
 }
 
 /// On a fixed base the tangent derivative is the plain partial, and the gravity derivative
@@ -257,8 +286,9 @@ fn gravity_derivative_is_that_of_inverse_dynamics_at_rest() {
 fn counts(x: &Derivatives, d: &Dynamics) -> String {
     let t = |r: &[ExprId]| x.graph.op_counts(r).total();
     format!(
-        "ID {} | dτ/dq {} dτ/dν {} dg/dq {} M⁻¹ {} dν̇/dq {} dν̇/dν {} | all {}",
+        "ID {} g {} | dτ/dq {} dτ/dν {} dg/dq {} M⁻¹ {} dν̇/dq {} dν̇/dν {} | all {}",
         d.graph.op_counts(&d.inverse_dynamics).total(),
+        d.graph.op_counts(&d.gravity).total(),
         t(&x.d_tau_dq),
         t(&x.d_tau_dqd),
         t(&x.gravity_derivative),
