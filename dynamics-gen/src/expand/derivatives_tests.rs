@@ -336,5 +336,20 @@ fn derivative_op_counts() {
             counts(&x, &d),
             t.elapsed()
         );
+        // What the checked zero pruning of `expand` would remove.
+        let roots: Vec<&[ExprId]> = vec![
+            &x.d_tau_dq,
+            &x.d_tau_dqd,
+            &x.gravity_derivative,
+            &x.mass_matrix_inverse,
+            &x.d_qdd_dq,
+            &x.d_qdd_dqd,
+        ];
+        let (pg, pruned) = prune_checked(x.graph.clone(), &roots);
+        let pruned: Vec<String> = pruned
+            .iter()
+            .map(|r| pg.op_counts(r).total().to_string())
+            .collect();
+        println!("  pruned: {}", pruned.join(" "));
     }
 }
