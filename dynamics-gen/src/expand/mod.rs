@@ -46,6 +46,7 @@
 pub mod aba;
 pub mod base;
 pub mod crba;
+pub mod derivatives;
 pub mod frames;
 pub mod kinematics;
 pub mod ldlt;
@@ -518,3 +519,6 @@ mod tree_tests;
 
 #[cfg(test)]
 mod mimic_tests;
+
+#[cfg(test)]
+mod derivatives_tests;

@@ -1,0 +1,167 @@
+//! Symbolic derivatives of the dynamics for optimal control, on one graph that imports the
+//! dynamics ([`super::Dynamics`]) with [`ExprGraph::import`].
+//!
+//! Derivatives with respect to the configuration are taken in the tangent space (nv
+//! columns), as Pinocchio does: column `j` of `∂f/∂q` is the directional derivative of `f`
+//! along the configuration rate ([`super::base::configuration_rate`]) of the unit velocity
+//! `ν = e_j`. On a fixed base this is the plain partial `∂f/∂θ_j`. On a floating base
+//! (`q = (p, quat, θ)`, `ν = (ω_b, v_b, θ̇)`) the joint columns are plain partials too, and
+//! the base's six columns are the derivatives along the body-frame motions
+//! ```text
+//! ṗ = R v_b,   quaṫ = ½ quat ⊗ (ω_b, 0)     with (ω_b, v_b) = e_k, k = 0..6
+//! ```
+//! (one forward-mode sweep [`ExprGraph::jvp`] each, its seeds the configuration rate with the
+//! `ν` inputs replaced by the unit vector, [`ExprGraph::substitute`]). Derivatives with
+//! respect to `ν` are plain partials ([`ExprGraph::diff_many`]).
+//!
+//! With `τ = ID(q, ν, ν̇)` (inverse dynamics), `g(q)` (gravity) and `M(q)`:
+//! ```text
+//! ∂τ/∂q, ∂τ/∂ν       tangent / plain partials of ID, ν̇ held fixed;  ∂τ/∂ν̇ = M
+//! ∂g/∂q              tangent partials of g
+//! M⁻¹                columns M⁻¹ e_j by the unrolled Lᵀ D L factor (ldlt::ltdl_apply),
+//!                    lower triangle computed, upper mirrored
+//! ∂ν̇/∂q = −M⁻¹ ∂τ/∂q |_{ν̇ = FD(q, ν, τ)},   ∂ν̇/∂ν = −M⁻¹ ∂τ/∂ν |_{ν̇ = FD(q, ν, τ)},   ∂ν̇/∂τ = M⁻¹
+//! ```
+//! The last two follow from differentiating `ID(q, ν, FD(q, ν, τ)) = τ` (implicit function
+//! theorem, in the tangent space as well): the partials of inverse dynamics are built with
+//! the `ν̇` inputs ([`QDD`]) free, then those inputs are replaced by the forward-dynamics
+//! expressions (which read [`TAU`]), and each column is solved with the factor of `M`
+//! (`−M⁻¹ b` by `ltdl_apply`, which keeps a tree's structural zeros).
+//!
+//! Every matrix is nv×nv row-major, `[i * nv + j] = ∂f_i/∂x_j`.
+
+#[cfg(doc)]
+use super::TAU;
+use super::{base, input, ldlt, Dynamics, QD, QDD};
+use crate::expr::{ExprGraph, ExprId, Input};
+
+/// The derivatives, on their own graph (inputs [`super::Q`], [`QD`], [`QDD`], [`super::TAU`]).
+#[derive(Clone, Debug)]
+pub struct Derivatives {
+    /// The combined graph.
+    pub graph: ExprGraph,
+    /// nv, the size of every (square) matrix.
+    pub nv: usize,
+    /// `∂τ/∂q` (tangent space) of inverse dynamics; reads q, ν, ν̇.
+    pub d_tau_dq: Vec<ExprId>,
+    /// `∂τ/∂ν` of inverse dynamics; reads q, ν.
+    pub d_tau_dqd: Vec<ExprId>,
+    /// `∂g/∂q` (tangent space); reads q.
+    pub gravity_derivative: Vec<ExprId>,
+    /// `M⁻¹` (symmetric); reads q.
+    pub mass_matrix_inverse: Vec<ExprId>,
+    /// `∂ν̇/∂q` (tangent space) of forward dynamics; reads q, ν, τ.
+    pub d_qdd_dq: Vec<ExprId>,
+    /// `∂ν̇/∂ν` of forward dynamics; reads q, ν, τ.
+    pub d_qdd_dqd: Vec<ExprId>,
+}
+
+/// The seeds of [`ExprGraph::jvp`] for each of the nv tangent directions of the
+/// configuration: the configuration rate of `ν = e_j`.
+pub fn tangent_seeds(g: &mut ExprGraph, floating: bool, dof: usize) -> Vec<Vec<(Input, ExprId)>> {
+    let nv = if floating { dof + base::NV_BASE } else { dof };
+    let rate = base::configuration_rate(g, floating, dof);
+    let (zero, one) = (g.zero(), g.one());
+    (0..nv)
+        .map(|j| {
+            let exprs: Vec<ExprId> = rate.iter().map(|&(_, e)| e).collect();
+            let unit = g.substitute(&exprs, &|x: Input| {
+                (x.group == QD).then_some(if x.index as usize == j { one } else { zero })
+            });
+            rate.iter()
+                .zip(unit)
+                .map(|(&(x, _), e)| (x, e))
+                .filter(|&(_, e)| !g.is_zero(e))
+                .collect()
+        })
+        .collect()
+}
+
+/// `∂f/∂q` in the tangent space, `f.len()`×nv row-major (see the module docs).
+pub fn tangent_jacobian(
+    g: &mut ExprGraph,
+    f: &[ExprId],
+    seeds: &[Vec<(Input, ExprId)>],
+) -> Vec<ExprId> {
+    let cols: Vec<Vec<ExprId>> = seeds
+        .iter()
+        .map(|s| match s.as_slice() {
+            // One unit seed: a plain partial (diff_many skips what does not depend on it).
+            [(x, e)] if g.is_one(*e) => g.diff_many(f, *x),
+            _ => g.jvp(f, s),
+        })
+        .collect();
+    transpose(&cols, f.len())
+}
+
+/// `∂f/∂x` for the inputs `x` of `group` with indices `0..n`, `f.len()`×n row-major.
+fn partials(g: &mut ExprGraph, f: &[ExprId], group: u8, n: usize) -> Vec<ExprId> {
+    let cols: Vec<Vec<ExprId>> = (0..n).map(|j| g.diff_many(f, input(group, j))).collect();
+    transpose(&cols, f.len())
+}
+
+/// Row-major matrix from its columns.
+fn transpose(cols: &[Vec<ExprId>], rows: usize) -> Vec<ExprId> {
+    (0..rows)
+        .flat_map(|i| cols.iter().map(move |c| c[i]))
+        .collect()
+}
+
+/// `−M⁻¹ B` for `B` nv×nv row-major, column by column from the factor `(h, inv_d)`.
+fn neg_solve(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
+    let nv = inv_d.len();
+    let cols: Vec<Vec<ExprId>> = (0..nv)
+        .map(|j| {
+            let col: Vec<ExprId> = (0..nv).map(|i| g.neg(b[i * nv + j])).collect();
+            ldlt::ltdl_apply(g, h, inv_d, &col)
+        })
+        .collect();
+    transpose(&cols, nv)
+}
+
+/// Expands the derivatives of `d`'s dynamics (see the module docs).
+pub fn expand_derivatives(d: &Dynamics) -> Derivatives {
+    let nv = d.nv;
+    let floating = d.nq != d.nv;
+    let mut g = ExprGraph::new();
+    let id = g.import(&d.graph, &d.inverse_dynamics);
+    let gravity = g.import(&d.graph, &d.gravity);
+    let fd = g.import(&d.graph, &d.forward_dynamics);
+    let h = g.import(&d.graph, &d.mass_matrix_factor);
+    let inv_d = g.import(&d.graph, &d.mass_matrix_inv_d);
+    let seeds = tangent_seeds(&mut g, floating, d.dof);
+    let d_tau_dq = tangent_jacobian(&mut g, &id, &seeds);
+    let d_tau_dqd = partials(&mut g, &id, QD, nv);
+    let gravity_derivative = tangent_jacobian(&mut g, &gravity, &seeds);
+    // M⁻¹: columns M⁻¹ e_j, the lower triangle kept and mirrored.
+    let (zero, one) = (g.zero(), g.one());
+    let mut mass_matrix_inverse = vec![zero; nv * nv];
+    for j in 0..nv {
+        let e: Vec<ExprId> = (0..nv).map(|i| if i == j { one } else { zero }).collect();
+        let col = ldlt::ltdl_apply(&mut g, &h, &inv_d, &e);
+        for i in j..nv {
+            mass_matrix_inverse[i * nv + j] = col[i];
+            mass_matrix_inverse[j * nv + i] = col[i];
+        }
+    }
+    // ν̇ := FD(q, ν, τ) in the partials of inverse dynamics, then −M⁻¹ ·.
+    let at_fd = |g: &mut ExprGraph, m: &[ExprId]| {
+        g.substitute(m, &|x: Input| {
+            (x.group == QDD).then(|| fd[x.index as usize])
+        })
+    };
+    let dq = at_fd(&mut g, &d_tau_dq);
+    let dqd = at_fd(&mut g, &d_tau_dqd);
+    let d_qdd_dq = neg_solve(&mut g, &h, &inv_d, &dq);
+    let d_qdd_dqd = neg_solve(&mut g, &h, &inv_d, &dqd);
+    Derivatives {
+        graph: g,
+        nv,
+        d_tau_dq,
+        d_tau_dqd,
+        gravity_derivative,
+        mass_matrix_inverse,
+        d_qdd_dq,
+        d_qdd_dqd,
+    }
+}
