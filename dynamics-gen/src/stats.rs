@@ -201,6 +201,40 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             lines: function_lines(code, name),
         });
     }
+    if let Some(x) = &generated.derivatives {
+        let cat = |parts: &[&[ExprId]]| -> Vec<ExprId> { parts.concat() };
+        for (name, roots) in [
+            (
+                "inverse_dynamics_derivatives",
+                cat(&[&x.d_tau_dq, &x.d_tau_dqd]),
+            ),
+            (
+                "inverse_dynamics_with_derivatives",
+                cat(&[&x.inverse_dynamics, &x.d_tau_dq, &x.d_tau_dqd]),
+            ),
+            (
+                "forward_dynamics_derivatives",
+                cat(&[&x.d_qdd_dq, &x.d_qdd_dqd, &x.mass_matrix_inverse]),
+            ),
+            (
+                "forward_dynamics_with_derivatives",
+                cat(&[
+                    &x.forward_dynamics,
+                    &x.d_qdd_dq,
+                    &x.d_qdd_dqd,
+                    &x.mass_matrix_inverse,
+                ]),
+            ),
+            ("mass_matrix_inverse", x.mass_matrix_inverse.clone()),
+            ("gravity_derivative", x.gravity_derivative.clone()),
+        ] {
+            functions.push(FunctionStats {
+                name,
+                ops: x.graph.op_counts(&roots),
+                lines: function_lines(code, name),
+            });
+        }
+    }
     let k = &generated.kinematics;
     let all = |f: fn(&FrameKinematics) -> &Vec<ExprId>| -> Vec<ExprId> {
         k.frames.iter().flat_map(|x| f(x).iter().copied()).collect()

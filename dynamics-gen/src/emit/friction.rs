@@ -119,6 +119,79 @@ pub fn friction_function(robot: &Robot, options: &Options, nalgebra: &TokenStrea
     }
 }
 
+/// The private `friction_rate(&self, qd)`: the diagonal of `∂τ_f/∂q̇`, `b + μ/ε (1 −
+/// tanh²(q̇/ε))` per coordinate (Coulomb model: `b`, the derivative of `sgn` away from rest),
+/// with the mimic projection of [`friction_function`]. Empty without friction in the
+/// dynamics (only the derivative functions call it).
+pub fn friction_rate_function(
+    robot: &Robot,
+    options: &Options,
+    nalgebra: &TokenStream,
+) -> TokenStream {
+    let Some(model) = options.friction else {
+        return quote!();
+    };
+    let scalar = options.scalar;
+    let ty = Ident::new(scalar.as_str(), Span::call_site());
+    let nv = robot.nv();
+    let off = nv - robot.n_coordinates();
+    let couplings = robot.couplings();
+    let mut used = vec![false; nv];
+    let entries: Vec<TokenStream> = (0..nv)
+        .map(|i| {
+            if i < off {
+                return float_tokens(0.0, scalar);
+            }
+            let c = i - off;
+            let x = format_ident!("qd{}", i);
+            let mut b_eff = 0.0;
+            let mut terms: Vec<TokenStream> = Vec::new();
+            for (joint, k) in robot.joints.iter().zip(&couplings) {
+                if k.coordinate != c {
+                    continue;
+                }
+                let m = k.multiplier;
+                b_eff += joint.damping * m * m;
+                if let (Friction::Smooth(eps), true) = (model, joint.friction != 0.0) {
+                    // d/dx μ|m| tanh(|m| x/ε) = μ m²/ε (1 − tanh²(|m| x/ε)).
+                    let gain = float_tokens(joint.friction * m * m / eps, scalar);
+                    let scale = float_tokens(m.abs() / eps, scalar);
+                    let tanh = tanh_call(quote!(#scale * #x), scalar, options.no_std);
+                    used[i] = true;
+                    terms.push(quote!(#gain * { let t = #tanh; 1.0 - t * t }));
+                }
+            }
+            if b_eff != 0.0 {
+                terms.insert(0, float_tokens(b_eff, scalar));
+            }
+            if terms.is_empty() {
+                return float_tokens(0.0, scalar);
+            }
+            quote!(#(#terms)+*)
+        })
+        .collect();
+    let names = (0..nv).map(|i| {
+        if used[i] {
+            let x = format_ident!("qd{}", i);
+            quote!(#x)
+        } else {
+            quote!(_)
+        }
+    });
+    let na = nalgebra;
+    let nv_lit = proc_macro2::Literal::usize_unsuffixed(nv);
+    quote! {
+        /// The diagonal of `∂friction(q̇)/∂q̇` (the Coulomb part's `sgn` counts as flat away
+        /// from rest).
+        #[inline]
+        #[must_use]
+        fn friction_rate(&self, qd: &#na::SVector<#ty, #nv_lit>) -> #na::SVector<#ty, #nv_lit> {
+            let [[#(#names),*]] = qd.data.0;
+            #na::SVector::<#ty, #nv_lit>::from_array_storage(#na::ArrayStorage([[#(#entries),*]]))
+        }
+    }
+}
+
 fn tanh_call(x: TokenStream, scalar: Scalar, no_std: bool) -> TokenStream {
     match (no_std, scalar) {
         (false, _) => quote!((#x).tanh()),

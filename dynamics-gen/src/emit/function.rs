@@ -42,11 +42,11 @@ pub enum Output {
     Matrices(usize),
     /// An array of this many poses.
     Poses(usize),
-    /// A tuple of `count` (at most 3) matrices of the given `(rows, cols)`, each row-major,
+    /// A tuple of `count` (at most 4) matrices of the given `(rows, cols)`, each row-major,
     /// one after the other (`rows`/`cols` of the body are ignored).
     Tuple {
         /// The shapes.
-        shapes: [(usize, usize); 3],
+        shapes: [(usize, usize); 4],
         /// How many of `shapes` are used.
         count: usize,
     },

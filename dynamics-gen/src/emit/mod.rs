@@ -5,6 +5,7 @@
 //! the generated API. [`generate_file`] adds the struct, the `@generated` header and the
 //! formatting.
 
+pub mod derivatives;
 pub mod friction;
 pub mod function;
 pub mod literal;
@@ -40,6 +41,8 @@ pub struct Generated {
     pub kinematics: Kinematics,
     /// The tip-wrench and task-space functions (for statistics).
     pub task_space: TaskSpace,
+    /// The derivatives (for statistics), when a derivative function is generated.
+    pub derivatives: Option<expand::derivatives::Derivatives>,
     /// The friction model, when friction is in the dynamics ([`Options::friction`]).
     pub friction: Option<crate::options::Friction>,
     /// The robot as generated: validated, with the gravity override applied.
@@ -150,6 +153,10 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let inverse = friction::add_friction(inverse, options);
     let forward = friction::subtract_friction(forward, options);
     let friction_fn = friction::friction_function(&robot, options, &nalgebra);
+    let friction_fn = {
+        let rate = friction::friction_rate_function(&robot, options, &nalgebra);
+        quote!(#friction_fn #rate)
+    };
     let kinematics = expand_kinematics(&robot);
     let task_space = expand_task_space(&dynamics, &kinematics);
     let extras = dynamics_extras(
@@ -159,6 +166,26 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         &nalgebra,
         [&q, &qd, &qdd, &tau],
     );
+    let wanted = |f: &str| {
+        options
+            .functions
+            .as_ref()
+            .is_none_or(|s| s.iter().any(|x| x == f))
+    };
+    let derivatives = DERIVATIVE_FUNCTIONS
+        .iter()
+        .any(|f| wanted(f))
+        .then(|| expand::derivatives::expand_derivatives(&dynamics));
+    let derivative_fns = match &derivatives {
+        Some(x) => derivatives::derivative_functions(
+            x,
+            nq_usize,
+            options,
+            &nalgebra,
+            [&q, &qd, &qdd, &tau],
+        ),
+        None => quote!(),
+    };
     let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &[q, qd]);
     let names: Vec<&str> = robot.joint_names();
     let units = unit_doc(&robot);
@@ -295,6 +322,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
 
             #extras
 
+            #derivative_fns
+
             #kinematics_fns
         }
     };
@@ -321,6 +350,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         dynamics,
         kinematics,
         task_space,
+        derivatives,
         friction: options.friction,
         robot,
     })
@@ -409,7 +439,7 @@ fn dynamics_extras(
         &both,
         (0, 0),
         Output::Tuple {
-            shapes: [(nv_usize, nv_usize), (nv_usize, 1), (0, 0)],
+            shapes: [(nv_usize, nv_usize), (nv_usize, 1), (0, 0), (0, 0)],
             count: 2,
         },
     );
@@ -492,7 +522,7 @@ fn dynamics_extras(
         &factor_outputs,
         (0, 0),
         Output::Tuple {
-            shapes: [(nl_usize, 1), (nv_usize, 1), (nv_usize, 1)],
+            shapes: [(nl_usize, 1), (nv_usize, 1), (nv_usize, 1), (0, 0)],
             count: 3,
         },
     );
@@ -780,10 +810,21 @@ fn select_functions(
 
 /// The private helpers of the generated impl and the functions that call them.
 const HELPERS: &[(&str, &[&str])] = &[
+    ("friction_rate", DERIVATIVE_FUNCTIONS),
     ("isometry", &["end_effector_pose", "frame_poses"]),
     ("mass_matrix_factor", &["constrained_forward_dynamics"]),
     ("solve_factored", &["constrained_forward_dynamics"]),
     ("solve_constraint", &["constrained_forward_dynamics"]),
+];
+
+/// The functions of [`derivatives`].
+const DERIVATIVE_FUNCTIONS: &[&str] = &[
+    "inverse_dynamics_derivatives",
+    "inverse_dynamics_with_derivatives",
+    "forward_dynamics_derivatives",
+    "forward_dynamics_with_derivatives",
+    "mass_matrix_inverse",
+    "gravity_derivative",
 ];
 
 /// `end_effector_pose`, `jacobian_space`, `jacobian_body`, and for named frames

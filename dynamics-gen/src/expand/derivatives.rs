@@ -54,6 +54,11 @@ pub struct Derivatives {
     pub d_qdd_dq: Vec<ExprId>,
     /// `∂ν̇/∂ν` of forward dynamics; reads q, ν, τ.
     pub d_qdd_dqd: Vec<ExprId>,
+    /// Inverse dynamics `τ` (as in [`Dynamics::inverse_dynamics`]), for the functions that
+    /// return the value with its derivatives.
+    pub inverse_dynamics: Vec<ExprId>,
+    /// Forward dynamics `ν̇` (as in [`Dynamics::forward_dynamics`]).
+    pub forward_dynamics: Vec<ExprId>,
 }
 
 /// The seeds of [`ExprGraph::jvp`] for each of the nv tangent directions of the
@@ -154,14 +159,31 @@ pub fn expand_derivatives(d: &Dynamics) -> Derivatives {
     let dqd = at_fd(&mut g, &d_tau_dqd);
     let d_qdd_dq = neg_solve(&mut g, &h, &inv_d, &dq);
     let d_qdd_dqd = neg_solve(&mut g, &h, &inv_d, &dqd);
+    // Sums that cancel to zero (a tree's independent branches, symmetric terms) removed,
+    // checked numerically as in `expand`.
+    let roots: [&[ExprId]; 8] = [
+        &d_tau_dq,
+        &d_tau_dqd,
+        &gravity_derivative,
+        &mass_matrix_inverse,
+        &d_qdd_dq,
+        &d_qdd_dqd,
+        &id,
+        &fd,
+    ];
+    let (graph, pruned) = super::prune_checked(g, &roots);
+    let mut pruned = pruned.into_iter();
+    let mut next = || pruned.next().unwrap_or_default();
     Derivatives {
-        graph: g,
         nv,
-        d_tau_dq,
-        d_tau_dqd,
-        gravity_derivative,
-        mass_matrix_inverse,
-        d_qdd_dq,
-        d_qdd_dqd,
+        d_tau_dq: next(),
+        d_tau_dqd: next(),
+        gravity_derivative: next(),
+        mass_matrix_inverse: next(),
+        d_qdd_dq: next(),
+        d_qdd_dqd: next(),
+        inverse_dynamics: next(),
+        forward_dynamics: next(),
+        graph,
     }
 }

@@ -316,6 +316,22 @@ fn derivative_op_counts() {
         .iter()
         .map(|n| dynamics_model::load(n, &Default::default()).unwrap())
         .collect();
+    // More robots by path (`+ff`: on a floating base), e.g.
+    // DERIVATIVE_ROBOTS="../tests/data/robots/panda.urdf ../tests/data/robots/trees/solo12.urdf+ff".
+    for spec in std::env::var("DERIVATIVE_ROBOTS")
+        .unwrap_or_default()
+        .split_whitespace()
+    {
+        let (path, floating_base) = match spec.strip_suffix("+ff") {
+            Some(p) => (p, true),
+            None => (spec, false),
+        };
+        let options = dynamics_model::LoadOptions {
+            floating_base,
+            ..Default::default()
+        };
+        robots.push(dynamics_model::load(path, &options).unwrap());
+    }
     robots.push(random_tree(
         20,
         TreeSpec {
