@@ -12,6 +12,8 @@
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/algorithm/crba.hpp>
 #include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/rnea-derivatives.hpp>
+#include <pinocchio/algorithm/aba-derivatives.hpp>
 #include <pinocchio/serialization.hpp>
 
 #include <algorithm>
@@ -95,6 +97,7 @@ int main(int argc, char ** argv)
       tau[k] = VectorXd::NullaryExpr(model.nv, [&]() { return 5.0 * u(gen); });
     }
     const int n = model.nv;
+    Eigen::MatrixXd dg = Eigen::MatrixXd::Zero(n, n);
     { // sanity: rnea(q, v, aba(q, v, tau)) == tau
       const VectorXd ddq = pinocchio::aba(model, data, q[3], v[3], tau[3]);
       const double err = (pinocchio::rnea(model, data, q[3], v[3], ddq) - tau[3]).cwiseAbs().maxCoeff();
@@ -110,6 +113,30 @@ int main(int argc, char ** argv)
       {"crba", [&](long i) { const int k = i & (K - 1); return pinocchio::crba(model, data, q[k])(0, n - 1); }},
       {"gravity", [&](long i) { const int k = i & (K - 1); return pinocchio::computeGeneralizedGravity(model, data, q[k])[0]; }},
       {"aba", [&](long i) { const int k = i & (K - 1); return pinocchio::aba(model, data, q[k], v[k], tau[k])[0]; }},
+      // dtau/dq, dtau/dv and dtau/da = M (upper triangle) in data
+      {"rnea_derivatives", [&](long i) {
+         const int k = i & (K - 1);
+         pinocchio::computeRNEADerivatives(model, data, q[k], v[k], a[k]);
+         return data.dtau_dq(n - 1, 0) + data.dtau_dv(n - 1, 0);
+       }},
+      // ddq (data.ddq), ddq/dq, ddq/dv and M^-1 (upper triangle) in data
+      {"aba_derivatives", [&](long i) {
+         const int k = i & (K - 1);
+         pinocchio::computeABADerivatives(model, data, q[k], v[k], tau[k]);
+         return data.ddq_dq(n - 1, 0) + data.ddq_dv(n - 1, 0);
+       }},
+      // M^-1, upper triangle
+      {"minverse", [&](long i) {
+         const int k = i & (K - 1);
+         pinocchio::computeMinverse(model, data, q[k]);
+         return data.Minv(0, n - 1);
+       }},
+      // dg/dq
+      {"gravity_derivatives", [&](long i) {
+         const int k = i & (K - 1);
+         pinocchio::computeGeneralizedGravityDerivatives(model, data, q[k], dg);
+         return dg(n - 1, 0);
+       }},
     };
     for (const auto & al : algos)
     {

@@ -63,8 +63,10 @@ CRIT=${CARGO_TARGET_DIR:-$ROOT/target}/criterion
 "$VENV/bin/python" - "$CACHE/pinocchio.txt" "$CRIT" "$START" <<'EOF'
 import json, os, sys
 pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])
-ours = {"rnea": "inverse_dynamics", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics"}
-print(f"\n{'robot':<16} {'pinocchio':<9} {'pin_ns':>8} {'ours':<17} {'ours_ns':>8} {'ratio':>6}")
+ours = {"rnea": "inverse_dynamics", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics",
+        "rnea_derivatives": "inverse_dynamics_derivatives", "aba_derivatives": "forward_dynamics_with_derivatives",
+        "minverse": "mass_matrix_inverse", "gravity_derivatives": "gravity_derivative"}
+print(f"\n{'robot':<16} {'pinocchio':<19} {'pin_ns':>8} {'ours':<33} {'ours_ns':>8} {'ratio':>6}")
 for line in open(pin_file):
     robot, _nv, algo, med, _mn = line.split()
     est = os.path.join(crit, robot, "generated_" + ours[algo], "new", "estimates.json")
@@ -72,5 +74,5 @@ for line in open(pin_file):
     if os.path.exists(est) and os.path.getmtime(est) >= start:
         ns = json.load(open(est))["median"]["point_estimate"]
     cell = f"{ns:8.1f} {float(med) / ns:5.1f}x" if ns else f"{'-':>8} {'-':>6}"
-    print(f"{robot:<16} {algo:<9} {float(med):8.1f} {ours[algo]:<17} {cell}")
+    print(f"{robot:<16} {algo:<19} {float(med):8.1f} {ours[algo]:<33} {cell}")
 EOF

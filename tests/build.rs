@@ -18,6 +18,19 @@ struct Case {
     friction: Option<dynamics_gen::options::Friction>,
 }
 
+/// The compiled cases without the derivative functions (the largest trees: their
+/// derivatives are checked on the expression graph instead, tests/derivatives_pinocchio.rs,
+/// and would make this crate slow to compile).
+const WITHOUT_DERIVATIVES: &[&str] = &[
+    "tree_g1_29dof",
+    "tree_talos_upper_body",
+    "tree_talos_upper_body_mimic",
+    "tree_203_f32",
+    "tree_205_f64",
+    "mimic_302_f64",
+    "mimic_304_f32",
+];
+
 /// The random trees with armature and friction (in the dynamics) compiled as Rust: (seed,
 /// bodies, floating base, Coulomb smoothing ε or exact).
 pub const ACTUATED: &[(u64, usize, bool, Option<f64>)] =
@@ -238,12 +251,26 @@ fn main() {
     let mut std_list = String::new();
     let mut frame_list = String::new();
     let mut modules = String::new();
+    let mut derivative_registry = String::new();
+    for m in WITHOUT_DERIVATIVES {
+        assert!(cases.iter().any(|c| c.module == *m), "no case {m}");
+    }
     for case in &cases {
+        let derivatives = !WITHOUT_DERIVATIVES.contains(&case.module.as_str());
+        let functions = (!derivatives).then(|| {
+            dynamics_gen::options::FUNCTIONS
+                .iter()
+                .filter(|f| !f.contains("derivative") && **f != "mass_matrix_inverse")
+                .filter(|f| !f.starts_with("frame_") || !case.robot.frames.is_empty())
+                .map(|f| f.to_string())
+                .collect()
+        });
         let options = Options {
             name: Some("Robot".into()),
             scalar: case.scalar,
             no_std: case.no_std,
             friction: case.friction,
+            functions,
             ..Default::default()
         };
         let code = dynamics_gen::generate_file(&case.robot, &options, &case.spec)
@@ -263,6 +290,20 @@ fn main() {
             m = case.module
         )
         .ok();
+        if derivatives {
+            writeln!(
+                modules,
+                "derivatives_adapter!({m}, {nq}, {nv}, {s});",
+                m = case.module
+            )
+            .ok();
+            writeln!(
+                derivative_registry,
+                "    ({m:?}, &{m}::Robot),",
+                m = case.module
+            )
+            .ok();
+        }
         writeln!(list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         if !case.no_std {
             writeln!(std_list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
@@ -284,7 +325,7 @@ fn main() {
         .ok();
     }
     let all = format!(
-        "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n"
+        "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n/// The cases generated with the derivative functions: (module, functions).\npub const DERIVATIVE_CASES: &[(&str, &dyn super::GeneratedDerivatives)] = &[\n{derivative_registry}];\n"
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(

@@ -187,6 +187,114 @@ pub trait GeneratedDynamics: Sync {
     fn frame_jacobians_body(&self, q: &[f64]) -> Vec<DMatrix<f64>>;
 }
 
+/// The derivative functions of a generated robot, through f64 slices (only the cases
+/// generated with them: [`DERIVATIVE_CASES`]).
+pub trait GeneratedDerivatives: Sync {
+    /// `(∂τ/∂q, ∂τ/∂q̇)`.
+    fn inverse_dynamics_derivatives(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> (DMatrix<f64>, DMatrix<f64>);
+    /// `(τ, ∂τ/∂q, ∂τ/∂q̇)`.
+    fn inverse_dynamics_with_derivatives(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> (DVector<f64>, DMatrix<f64>, DMatrix<f64>);
+    /// `(∂q̈/∂q, ∂q̈/∂q̇, M⁻¹)`.
+    fn forward_dynamics_derivatives(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+    ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>);
+    /// `(q̈, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹)`.
+    fn forward_dynamics_with_derivatives(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+    ) -> (DVector<f64>, DMatrix<f64>, DMatrix<f64>, DMatrix<f64>);
+    /// `M⁻¹(q)`.
+    fn mass_matrix_inverse(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `∂g/∂q`.
+    fn gravity_derivative(&self, q: &[f64]) -> DMatrix<f64>;
+}
+
+/// Implements [`GeneratedDerivatives`] for the generated `$m::Robot`.
+#[macro_export]
+macro_rules! derivatives_adapter {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+        impl $crate::GeneratedDerivatives for $m::Robot {
+            fn inverse_dynamics_derivatives(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                qdd: &[f64],
+            ) -> (DMatrix<f64>, DMatrix<f64>) {
+                let (a, b) = $m::Robot::inverse_dynamics_derivatives(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
+                );
+                (to_dm(&a), to_dm(&b))
+            }
+            fn inverse_dynamics_with_derivatives(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                qdd: &[f64],
+            ) -> (DVector<f64>, DMatrix<f64>, DMatrix<f64>) {
+                let (t, a, b) = $m::Robot::inverse_dynamics_with_derivatives(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
+                );
+                (to_d(t), to_dm(&a), to_dm(&b))
+            }
+            fn forward_dynamics_derivatives(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                tau: &[f64],
+            ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+                let (a, b, c) = $m::Robot::forward_dynamics_derivatives(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(tau),
+                );
+                (to_dm(&a), to_dm(&b), to_dm(&c))
+            }
+            fn forward_dynamics_with_derivatives(
+                &self,
+                q: &[f64],
+                qd: &[f64],
+                tau: &[f64],
+            ) -> (DVector<f64>, DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+                let (x, a, b, c) = $m::Robot::forward_dynamics_with_derivatives(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(tau),
+                );
+                (to_d(x), to_dm(&a), to_dm(&b), to_dm(&c))
+            }
+            fn mass_matrix_inverse(&self, q: &[f64]) -> DMatrix<f64> {
+                to_dm(&$m::Robot::mass_matrix_inverse(self, &to_s::<$s, $nq>(q)))
+            }
+            fn gravity_derivative(&self, q: &[f64]) -> DMatrix<f64> {
+                to_dm(&$m::Robot::gravity_derivative(self, &to_s::<$s, $nq>(q)))
+            }
+        }
+    };
+}
+
 /// One compiled robot.
 pub struct Case {
     /// Its module name.
@@ -449,16 +557,22 @@ fn to_d<T: Real + nalgebra::Scalar, const N: usize>(x: nalgebra::SVector<T, N>) 
     DVector::from_fn(N, |i, _| x[i].to_f64())
 }
 
-/// The generated modules and [`CASES`].
+fn to_dm<T: Real + nalgebra::Scalar, const R: usize, const C: usize>(
+    x: &nalgebra::SMatrix<T, R, C>,
+) -> DMatrix<f64> {
+    DMatrix::from_fn(R, C, |i, j| x[(i, j)].to_f64())
+}
+
+/// The generated modules, [`CASES`] and [`DERIVATIVE_CASES`].
 pub mod generated {
     #![allow(missing_docs)]
-    use super::{homogeneous, to_d, to_s, Real};
+    use super::{homogeneous, to_d, to_dm, to_s, Real};
     use super::{Case, Spec};
     use nalgebra::{DMatrix, DVector, Matrix4};
     include!(concat!(env!("OUT_DIR"), "/cases.rs"));
 }
 
-pub use generated::CASES;
+pub use generated::{CASES, DERIVATIVE_CASES};
 
 include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
 

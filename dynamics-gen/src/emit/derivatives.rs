@@ -25,6 +25,7 @@ pub fn derivative_functions(
     let q_ty = quote!(#nalgebra::SVector<#scalar, #nq_lit>);
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
     let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
+    let mat_path = quote!(#nalgebra::SMatrix::<#scalar, #nv, #nv>);
     let square = (nv_usize, nv_usize);
     let column = (nv_usize, 1);
     let emit = |args: &[Arg], parts: &[&[crate::expr::ExprId]], shapes: &[(usize, usize)]| {
@@ -80,14 +81,14 @@ pub fn derivative_functions(
         Some(_) => (
             quote! {
                 let (d_q, d_qd) = { #id_derivatives };
-                (d_q, d_qd + #mat_ty::from_diagonal(&self.friction_rate(qd)))
+                (d_q, d_qd + #mat_path::from_diagonal(&self.friction_rate(qd)))
             },
             quote! {
                 let (tau, d_q, d_qd) = { #id_with };
                 (
                     tau + self.friction(qd),
                     d_q,
-                    d_qd + #mat_ty::from_diagonal(&self.friction_rate(qd)),
+                    d_qd + #mat_path::from_diagonal(&self.friction_rate(qd)),
                 )
             },
             quote! {
