@@ -255,7 +255,8 @@ fn forward<const NX: usize, const NU: usize>(
     }
     total += cost.last(&x);
     let predicted = -(alpha * d1 + alpha * alpha * d2);
-    if !(total < j && j - total >= 0.1 * predicted) {
+    let accepted = total < j && j - total >= 0.1 * predicted;
+    if !accepted {
         return (j, false);
     }
     // Accepted: the rollout again, storing it with its linearisation.
@@ -282,7 +283,8 @@ fn cholesky<const N: usize>(m: &SMatrix<f64, N, N>) -> Option<SMatrix<f64, N, N>
         for k in 0..j {
             d -= l[(j, k)] * l[(j, k)];
         }
-        if !(d > 0.0) {
+        // (NaN fails this test too.)
+        if d.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
             return None;
         }
         let d = libm::sqrt(d);

@@ -82,6 +82,65 @@ macro_rules! bench_robot {
     }};
 }
 
+/// The derivative functions (the robots generated with them), beside `inverse_dynamics`.
+macro_rules! bench_derivatives {
+    ($c:expr, $label:literal, $m:ident, $nq:literal, $nv:literal) => {{
+        use dynamics_tests::generated::$m::Robot as Gen;
+        let q = SVector::<f64, $nq>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
+        let qd = SVector::<f64, $nv>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
+        let qdd = SVector::<f64, $nv>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
+        let tau = Gen.inverse_dynamics(&q, &qd, &qdd);
+        let mut group = $c.benchmark_group($label);
+        group.bench_function("generated/inverse_dynamics_derivatives", |b| {
+            b.iter(|| {
+                Gen.inverse_dynamics_derivatives(black_box(&q), black_box(&qd), black_box(&qdd))
+            })
+        });
+        group.bench_function("generated/inverse_dynamics_with_derivatives", |b| {
+            b.iter(|| {
+                Gen.inverse_dynamics_with_derivatives(
+                    black_box(&q),
+                    black_box(&qd),
+                    black_box(&qdd),
+                )
+            })
+        });
+        group.bench_function("generated/inverse_dynamics+derivatives_two_calls", |b| {
+            b.iter(|| {
+                (
+                    Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&qdd)),
+                    Gen.inverse_dynamics_derivatives(
+                        black_box(&q),
+                        black_box(&qd),
+                        black_box(&qdd),
+                    ),
+                )
+            })
+        });
+        group.bench_function("generated/forward_dynamics_derivatives", |b| {
+            b.iter(|| {
+                Gen.forward_dynamics_derivatives(black_box(&q), black_box(&qd), black_box(&tau))
+            })
+        });
+        group.bench_function("generated/forward_dynamics_with_derivatives", |b| {
+            b.iter(|| {
+                Gen.forward_dynamics_with_derivatives(
+                    black_box(&q),
+                    black_box(&qd),
+                    black_box(&tau),
+                )
+            })
+        });
+        group.bench_function("generated/mass_matrix_inverse", |b| {
+            b.iter(|| Gen.mass_matrix_inverse(black_box(&q)))
+        });
+        group.bench_function("generated/gravity_derivative", |b| {
+            b.iter(|| Gen.gravity_derivative(black_box(&q)))
+        });
+        group.finish();
+    }};
+}
+
 fn benches(c: &mut Criterion) {
     let data = dynamics_tests::data_dir().join("robots");
     let load = |name: &str, tip: &str| {
@@ -101,6 +160,10 @@ fn benches(c: &mut Criterion) {
         load("panda", "panda_hand_tcp")
     );
     bench_robot!(c, "rand7", urdf_rand7, 7, 7, load("rand7", "ee_link"));
+    bench_derivatives!(c, "ur5", urdf_ur5, 6, 6);
+    bench_derivatives!(c, "panda", urdf_panda, 7, 7);
+    bench_derivatives!(c, "rand7", urdf_rand7, 7, 7);
+    bench_derivatives!(c, "double_pendulum", urdf_double_pendulum, 2, 2);
     let tree = |name: &str, floating: bool| {
         let options = LoadOptions {
             floating_base: floating,
@@ -112,6 +175,7 @@ fn benches(c: &mut Criterion) {
     let talos = tree("talos_upper_body", false);
     bench_robot!(c, "talos_upper_body", tree_talos_upper_body, 20, 20, talos);
     bench_robot!(c, "solo12", tree_solo12, 19, 18, tree("solo12", true));
+    bench_derivatives!(c, "solo12", tree_solo12, 19, 18);
     bench_robot!(c, "g1_29dof", tree_g1_29dof, 36, 35, tree("g1_29dof", true));
 }
 
