@@ -328,16 +328,24 @@ pub fn function_lines(code: &str, name: &str) -> usize {
 
 impl fmt::Display for Stats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // The name column as wide as the longest name (frame functions carry user names).
+        let w = self
+            .functions
+            .iter()
+            .map(|s| s.name.chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(28);
         writeln!(
             f,
-            "{:<28} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
+            "{:<w$} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
             "function", "mul", "add/sub", "div", "sqrt", "sin/cos", "neg", "lines"
         )?;
         for s in &self.functions {
             let o = s.ops;
             writeln!(
                 f,
-                "{:<28} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
+                "{:<w$} {:>7} {:>8} {:>5} {:>5} {:>8} {:>5} {:>7}",
                 s.name, o.mul, o.add_sub, o.div, o.sqrt, o.sin_cos, o.neg, s.lines
             )?;
         }
