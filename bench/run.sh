@@ -5,7 +5,8 @@
 #   ROBOTS="ur5" CALLS=20000 REPS=3 CRITERION_ARGS="--warm-up-time 0.2 --measurement-time 0.5" bash bench/run.sh
 # Environment: ROBOTS (default "ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff";
 # NAME+ff puts the URDF on a free-flyer base), CALLS (100000), REPS (5),
-# CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR.
+# CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR, CODEGEN=1 (also
+# Pinocchio's code-generated derivatives, bench/run_codegen.sh, fixed-base robots).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -51,6 +52,13 @@ done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
 echo "# robot           nv algo     median_ns     min_ns"
 "$BIN" --calls "$CALLS" --reps "$REPS" "${ARGS[@]}" | tee "$CACHE/pinocchio.txt"
+# 1b. With CODEGEN=1: Pinocchio's code-generated derivatives too (bench/run_codegen.sh; fixed-base
+# robots only; its first run is long, see bench/README.md), in the same table.
+if [ "${CODEGEN:-0}" = 1 ]; then
+  CG_ROBOTS=$(for r in $ROBOTS; do [ "${r%+ff}" = "$r" ] && echo "$r"; done | tr '\n' ' ')
+  ROBOTS="$CG_ROBOTS" CALLS="$CALLS" REPS="$REPS" bash "$HERE/run_codegen.sh" >/dev/null
+  tee -a "$CACHE/pinocchio.txt" < "$CACHE/pinocchio_codegen.txt"
+fi
 [ "${SKIP_CARGO:-0}" = 1 ] && exit 0
 
 # 2. Our generated code, right after (criterion filter: the same robots).
@@ -65,7 +73,9 @@ import json, os, sys
 pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])
 ours = {"rnea": "inverse_dynamics", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics",
         "rnea_derivatives": "inverse_dynamics_derivatives", "aba_derivatives": "forward_dynamics_with_derivatives",
-        "minverse": "mass_matrix_inverse", "gravity_derivatives": "gravity_derivative"}
+        "minverse": "mass_matrix_inverse", "gravity_derivatives": "gravity_derivative",
+        "cg_rnea_derivatives": "inverse_dynamics_derivatives",
+        "cg_aba_derivatives": "forward_dynamics_with_derivatives", "cg_minverse": "mass_matrix_inverse"}
 print(f"\n{'robot':<16} {'pinocchio':<19} {'pin_ns':>8} {'ours':<33} {'ours_ns':>8} {'ratio':>6}")
 for line in open(pin_file):
     robot, _nv, algo, med, _mn = line.split()
