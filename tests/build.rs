@@ -252,6 +252,7 @@ fn main() {
     let mut frame_list = String::new();
     let mut modules = String::new();
     let mut derivative_registry = String::new();
+    let mut derivative_list = String::new();
     for m in WITHOUT_DERIVATIVES {
         assert!(cases.iter().any(|c| c.module == *m), "no case {m}");
     }
@@ -297,6 +298,14 @@ fn main() {
                 m = case.module
             )
             .ok();
+            if !case.no_std {
+                writeln!(
+                    derivative_list,
+                    "        $mac!({}, {nq}, {nv}, {s});",
+                    case.module
+                )
+                .ok();
+            }
             writeln!(
                 derivative_registry,
                 "    ({m:?}, &{m}::Robot),",
@@ -329,7 +338,7 @@ fn main() {
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(
-        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n"
+        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with the derivative functions and std trigonometry.\n#[macro_export]\nmacro_rules! with_derivative_cases {{\n    ($mac:ident) => {{\n{derivative_list}    }};\n}}\n"
     );
     std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
 }

@@ -221,6 +221,67 @@ mod release {
         dynamics_tests::with_frame_cases!(frame_wrappers);
     }
 
+    macro_rules! derivative_wrappers {
+        ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+            pub mod $m {
+                use super::super::*;
+                use dynamics_tests::generated::$m::Robot;
+                type Q = SVector<$s, $nq>;
+                type V = SVector<$s, $nv>;
+                type M = SMatrix<$s, $nv, $nv>;
+                #[no_panic]
+                pub fn inverse_dynamics_derivatives(q: &Q, qd: &V, qdd: &V) -> (M, M) {
+                    Robot.inverse_dynamics_derivatives(q, qd, qdd)
+                }
+                #[no_panic]
+                pub fn inverse_dynamics_with_derivatives(q: &Q, qd: &V, qdd: &V) -> (V, M, M) {
+                    Robot.inverse_dynamics_with_derivatives(q, qd, qdd)
+                }
+                #[no_panic]
+                pub fn forward_dynamics_derivatives(q: &Q, qd: &V, tau: &V) -> (M, M, M) {
+                    Robot.forward_dynamics_derivatives(q, qd, tau)
+                }
+                #[no_panic]
+                pub fn forward_dynamics_with_derivatives(q: &Q, qd: &V, tau: &V) -> (V, M, M, M) {
+                    Robot.forward_dynamics_with_derivatives(q, qd, tau)
+                }
+                #[no_panic]
+                pub fn mass_matrix_inverse(q: &Q) -> M {
+                    Robot.mass_matrix_inverse(q)
+                }
+                #[no_panic]
+                pub fn gravity_derivative(q: &Q) -> M {
+                    Robot.gravity_derivative(q)
+                }
+                pub fn call() -> $s {
+                    let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
+                    let v = V::from_fn(|i, _| 0.2 - 0.03 * i as $s);
+                    inverse_dynamics_derivatives(&q, &v, &v).0[(0, 0)]
+                        + inverse_dynamics_with_derivatives(&q, &v, &v).0[0]
+                        + forward_dynamics_derivatives(&q, &v, &v).2[(0, 0)]
+                        + forward_dynamics_with_derivatives(&q, &v, &v).0[0]
+                        + mass_matrix_inverse(&q)[(0, 0)]
+                        + gravity_derivative(&q)[(0, 0)]
+                }
+            }
+        };
+    }
+
+    pub mod derivatives {
+        dynamics_tests::with_derivative_cases!(derivative_wrappers);
+    }
+
+    macro_rules! call_derivatives {
+        ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+            assert!(derivatives::$m::call().is_finite());
+        };
+    }
+
+    #[test]
+    fn derivative_functions_have_no_panic_path() {
+        dynamics_tests::with_derivative_cases!(call_derivatives);
+    }
+
     macro_rules! call {
         ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
             assert!($m::call().is_finite());
