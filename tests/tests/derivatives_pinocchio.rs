@@ -126,7 +126,7 @@ impl Worst {
 fn compare(what: &str, robot: &Robot, floating: bool, samples: &[Value]) -> Worst {
     assert_eq!(robot.base.floating, floating, "{what}: base");
     let d = expand(robot);
-    let der = expand_derivatives(&d);
+    let der = expand_derivatives(&d, robot);
     let nv = der.nv;
     assert_eq!(nv, robot.nv(), "{what}: nv");
     let ours = [

@@ -413,13 +413,38 @@ impl FunctionBody<'_> {
         if let Binding::Named(_) = bind[id.index()] {
             return 4;
         }
-        match self.graph.node(id) {
+        match *self.graph.node(id) {
+            Node::Add(a, b) if self.fused(bind, a) || self.fused(bind, b) => 4,
+            Node::Sub(a, b) if self.fused(bind, a) || self.fused(bind, b) => 4,
             Node::Add(..) | Node::Sub(..) => 1,
             Node::Mul(..) | Node::Div(..) => 2,
             Node::Neg(_) => 3,
             Node::Const(c) if c.value() < 0.0 => 3,
             _ => 4,
         }
+    }
+
+    /// Whether node `id` is a product written inline that its user fuses into a
+    /// multiply-add: with `std` only (see [`mul_add_helper`]).
+    fn fused(&self, bind: &[Binding], id: ExprId) -> bool {
+        !self.no_std
+            && matches!(bind[id.index()], Binding::Inline)
+            && matches!(self.graph.node(id), Node::Mul(..))
+    }
+
+    /// `Self::mul_add(x, y, c)` for the inline product `p = x·y` (`−x` if `negate`).
+    fn mul_add(&self, bind: &[Binding], p: ExprId, negate: bool, c: TokenStream) -> TokenStream {
+        let Node::Mul(x, y) = *self.graph.node(p) else {
+            unreachable!("fused() admits products only")
+        };
+        let x = if negate {
+            let x = self.operand(bind, x, 4);
+            quote!(-#x)
+        } else {
+            self.expr(bind, x)
+        };
+        let y = self.expr(bind, y);
+        quote!(Self::mul_add(#x, #y, #c))
     }
 
     /// For an inline product `(−c)·x` with a negative constant, the tokens of `c·x`.
@@ -446,6 +471,21 @@ impl FunctionBody<'_> {
             Node::Neg(a) => {
                 let a = self.operand(bind, a, 4);
                 quote!(-#a)
+            }
+            Node::Add(a, b) if self.fused(bind, a) || self.fused(bind, b) => {
+                // A product operand fuses into a multiply-add (the product on the right first).
+                let (p, c) = if self.fused(bind, b) { (b, a) } else { (a, b) };
+                self.mul_add(bind, p, false, self.expr(bind, c))
+            }
+            Node::Sub(a, b) if self.fused(bind, b) => {
+                // `a − x·y = (−x)·y + a`.
+                let c = self.expr(bind, a);
+                self.mul_add(bind, b, true, c)
+            }
+            Node::Sub(a, b) if self.fused(bind, a) => {
+                // `x·y − b = x·y + (−b)`.
+                let c = self.operand(bind, b, 4);
+                self.mul_add(bind, a, false, quote!(-#c))
             }
             Node::Add(a, b) => {
                 // `a + (−c)·x` reads better as `a − c·x` (negation is exact).
@@ -490,6 +530,32 @@ impl FunctionBody<'_> {
                 };
                 let f = Ident::new(f, Span::call_site());
                 quote!((#a).#f())
+            }
+        }
+    }
+}
+
+/// The private `mul_add(a, b, c) = a·b + c` helper of a generated `std` impl, which every
+/// sum or difference with a single-use product operand calls: one fused multiply-add
+/// (`f64::mul_add`, one rounding) where the target has the instruction (x86-64 with the
+/// `fma` feature, e.g. `-C target-cpu=native`, and AArch64), otherwise the product and the
+/// sum as written; `#[inline(always)]`, so either way no call remains. `no_std` code writes
+/// products and sums alone (`core` has no `mul_add`, and `libm`'s is a software routine on
+/// most targets).
+pub fn mul_add_helper(scalar: Scalar) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    quote! {
+        /// `a·b + c`: fused (rounded once) where the target has a fused multiply-add
+        /// instruction (x86-64 with `fma`, AArch64), otherwise a product and a sum.
+        #[inline(always)]
+        fn mul_add(a: #t, b: #t, c: #t) -> #t {
+            #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
+            {
+                a.mul_add(b, c)
+            }
+            #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
+            {
+                a * b + c
             }
         }
     }

@@ -21,7 +21,7 @@ use dynamics_model::Robot;
 use function::{Arg, FunctionBody, Output};
 use proc_macro2::{Ident, Span, TokenStream};
 pub use provenance::Provenance;
-use quote::quote;
+use quote::{quote, ToTokens};
 use text::inert;
 
 /// The version of the generator, written into every generated header.
@@ -175,7 +175,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let derivatives = DERIVATIVE_FUNCTIONS
         .iter()
         .any(|f| wanted(f))
-        .then(|| expand::derivatives::expand_derivatives(&dynamics));
+        .then(|| expand::derivatives::expand_derivatives(&dynamics, &robot));
     let derivative_fns = match &derivatives {
         Some(x) => derivatives::derivative_functions(
             x,
@@ -226,6 +226,11 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     };
     let limits = limit_consts(&robot, options.scalar, n_usize);
     let allow = allow_attrs();
+    let mul_add_fn = if options.no_std {
+        quote!()
+    } else {
+        function::mul_add_helper(options.scalar)
+    };
     let impl_block = quote! {
         #allow
         #[rustfmt::skip]
@@ -325,6 +330,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #derivative_fns
 
             #kinematics_fns
+
+            #mul_add_fn
         }
     };
     let impl_block = select_functions(impl_block, &robot, options)?;
@@ -803,6 +810,17 @@ fn select_functions(
                 None => !known.contains(&name.as_str()) || wanted(&name),
             }
         }
+        _ => true,
+    });
+    // `mul_add` stays while a selected function calls it.
+    let calls_mul_add = item.items.iter().any(|it| match it {
+        syn::ImplItem::Fn(f) if f.sig.ident != "mul_add" => {
+            f.block.to_token_stream().to_string().contains("mul_add")
+        }
+        _ => false,
+    });
+    item.items.retain(|it| match it {
+        syn::ImplItem::Fn(f) if f.sig.ident == "mul_add" => calls_mul_add,
         _ => true,
     });
     Ok(quote!(#item))

@@ -32,8 +32,9 @@
 
 #[cfg(doc)]
 use super::TAU;
-use super::{base, input, ldlt, Dynamics, QD, QDD};
+use super::{base, frames, input, ldlt, mimic, rnea_derivatives, Dynamics, Q, QD, QDD};
 use crate::expr::{ExprGraph, ExprId, Input};
+use dynamics_model::Robot;
 
 /// The derivatives, on their own graph (inputs [`super::Q`], [`QD`], [`QDD`], [`super::TAU`]).
 #[derive(Clone, Debug)]
@@ -100,7 +101,7 @@ pub fn tangent_jacobian(
 }
 
 /// `∂f/∂x` for the inputs `x` of `group` with indices `0..n`, `f.len()`×n row-major.
-fn partials(g: &mut ExprGraph, f: &[ExprId], group: u8, n: usize) -> Vec<ExprId> {
+pub(crate) fn partials(g: &mut ExprGraph, f: &[ExprId], group: u8, n: usize) -> Vec<ExprId> {
     let cols: Vec<Vec<ExprId>> = (0..n).map(|j| g.diff_many(f, input(group, j))).collect();
     transpose(&cols, f.len())
 }
@@ -124,8 +125,26 @@ fn neg_solve(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) ->
     transpose(&cols, nv)
 }
 
-/// Expands the derivatives of `d`'s dynamics (see the module docs).
-pub fn expand_derivatives(d: &Dynamics) -> Derivatives {
+/// `(∂τ/∂q, ∂τ/∂q̇)` by [`rnea_derivatives`] for a fixed-base robot without mimic joints
+/// (`None` otherwise), on `g`'s inputs.
+pub(crate) fn analytical(g: &mut ExprGraph, robot: &Robot) -> Option<(Vec<ExprId>, Vec<ExprId>)> {
+    if robot.base.floating || !mimic::Coupling::new(robot).is_identity() {
+        return None;
+    }
+    let frames = frames::joint_frames(robot);
+    let n = frames.joints.len();
+    let q: Vec<ExprId> = (0..n).map(|i| g.input(input(Q, i))).collect();
+    let qd: Vec<ExprId> = (0..n).map(|i| g.input(input(QD, i))).collect();
+    let qdd: Vec<ExprId> = (0..n).map(|i| g.input(input(QDD, i))).collect();
+    let motions = super::joint_motions(g, &frames, &q);
+    let base = base::base_motion(g, false, &[], &[], frames.gravity);
+    Some(rnea_derivatives::rnea_derivatives(
+        g, &motions, &base, &qd, &qdd,
+    ))
+}
+
+/// Expands the derivatives of `d`, the dynamics of `robot` (see the module docs).
+pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     let nv = d.nv;
     let floating = d.nq != d.nv;
     let mut g = ExprGraph::new();
@@ -135,8 +154,17 @@ pub fn expand_derivatives(d: &Dynamics) -> Derivatives {
     let h = g.import(&d.graph, &d.mass_matrix_factor);
     let inv_d = g.import(&d.graph, &d.mass_matrix_inv_d);
     let seeds = tangent_seeds(&mut g, floating, d.dof);
-    let d_tau_dq = tangent_jacobian(&mut g, &id, &seeds);
-    let d_tau_dqd = partials(&mut g, &id, QD, nv);
+    let mut d_tau_dq = tangent_jacobian(&mut g, &id, &seeds);
+    let mut d_tau_dqd = partials(&mut g, &id, QD, nv);
+    // The analytical recursion where it applies and needs fewer operations.
+    if let Some((a_dq, a_dqd)) = analytical(&mut g, robot) {
+        let both = |x: &[ExprId], y: &[ExprId]| [x, y].concat();
+        if g.op_counts(&both(&a_dq, &a_dqd)).total()
+            < g.op_counts(&both(&d_tau_dq, &d_tau_dqd)).total()
+        {
+            (d_tau_dq, d_tau_dqd) = (a_dq, a_dqd);
+        }
+    }
     let gravity_derivative = tangent_jacobian(&mut g, &gravity, &seeds);
     // M⁻¹: columns M⁻¹ e_j, the lower triangle kept and mirrored.
     let (zero, one) = (g.zero(), g.one());

@@ -53,6 +53,7 @@ pub mod ldlt;
 pub mod mimic;
 pub mod rnea;
 pub mod rnea_classical;
+pub mod rnea_derivatives;
 pub mod spatial;
 pub mod task_space;
 
