@@ -30,6 +30,7 @@
 //!
 //! Every matrix is nv×nv row-major, `[i * nv + j] = ∂f_i/∂x_j`.
 
+use super::rnea_derivatives::PairFrame;
 #[cfg(doc)]
 use super::TAU;
 use super::{base, frames, input, ldlt, mimic, rnea_derivatives, Dynamics, Q, QD, QDD};
@@ -125,9 +126,23 @@ fn neg_solve(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) ->
     transpose(&cols, nv)
 }
 
-/// `(∂τ/∂q, ∂τ/∂q̇)` by [`rnea_derivatives`] for a fixed-base robot without mimic joints
-/// (`None` otherwise), on `g`'s inputs.
-pub(crate) fn analytical(g: &mut ExprGraph, robot: &Robot) -> Option<(Vec<ExprId>, Vec<ExprId>)> {
+/// The analytical derivatives of [`rnea_derivatives`], on the inputs of the graph.
+pub(crate) struct Analytical {
+    /// `∂τ/∂q`.
+    pub d_tau_dq: Vec<ExprId>,
+    /// `∂τ/∂q̇`.
+    pub d_tau_dqd: Vec<ExprId>,
+    /// `∂g/∂q` (the same at `q̇ = q̈ = 0`).
+    pub gravity_derivative: Vec<ExprId>,
+}
+
+/// [`Analytical`] for a fixed-base robot without mimic joints (`None` otherwise): for each
+/// matrix the cheapest of the given pair frames.
+pub(crate) fn analytical(
+    g: &mut ExprGraph,
+    robot: &Robot,
+    pair_frames: &[PairFrame],
+) -> Option<Analytical> {
     if robot.base.floating || !mimic::Coupling::new(robot).is_identity() {
         return None;
     }
@@ -138,9 +153,36 @@ pub(crate) fn analytical(g: &mut ExprGraph, robot: &Robot) -> Option<(Vec<ExprId
     let qdd: Vec<ExprId> = (0..n).map(|i| g.input(input(QDD, i))).collect();
     let motions = super::joint_motions(g, &frames, &q);
     let base = base::base_motion(g, false, &[], &[], frames.gravity);
-    Some(rnea_derivatives::rnea_derivatives(
-        g, &motions, &base, &qd, &qdd,
-    ))
+    let zeros = vec![g.zero(); n];
+    let cost = |g: &ExprGraph, x: &[ExprId], y: &[ExprId]| g.op_counts(&[x, y].concat()).total();
+    let mut best: Option<Analytical> = None;
+    for &frame in pair_frames {
+        let (d_tau_dq, d_tau_dqd) =
+            rnea_derivatives::rnea_derivatives(g, &motions, &base, &qd, &qdd, frame);
+        let (gravity_derivative, _) =
+            rnea_derivatives::rnea_derivatives(g, &motions, &base, &zeros, &zeros, frame);
+        let x = Analytical {
+            d_tau_dq,
+            d_tau_dqd,
+            gravity_derivative,
+        };
+        best = Some(match best {
+            None => x,
+            Some(b) => {
+                let mut b = b;
+                if cost(g, &x.d_tau_dq, &x.d_tau_dqd) < cost(g, &b.d_tau_dq, &b.d_tau_dqd) {
+                    (b.d_tau_dq, b.d_tau_dqd) = (x.d_tau_dq, x.d_tau_dqd);
+                }
+                if g.op_counts(&x.gravity_derivative).total()
+                    < g.op_counts(&b.gravity_derivative).total()
+                {
+                    b.gravity_derivative = x.gravity_derivative;
+                }
+                b
+            }
+        });
+    }
+    best
 }
 
 /// Expands the derivatives of `d`, the dynamics of `robot` (see the module docs).
@@ -156,16 +198,28 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     let seeds = tangent_seeds(&mut g, floating, d.dof);
     let mut d_tau_dq = tangent_jacobian(&mut g, &id, &seeds);
     let mut d_tau_dqd = partials(&mut g, &id, QD, nv);
-    // The analytical recursion where it applies and needs fewer operations.
-    if let Some((a_dq, a_dqd)) = analytical(&mut g, robot) {
-        let both = |x: &[ExprId], y: &[ExprId]| [x, y].concat();
-        if g.op_counts(&both(&a_dq, &a_dqd)).total()
-            < g.op_counts(&both(&d_tau_dq, &d_tau_dqd)).total()
-        {
-            (d_tau_dq, d_tau_dqd) = (a_dq, a_dqd);
+    let mut gravity_derivative = tangent_jacobian(&mut g, &gravity, &seeds);
+    // The analytical recursion where it applies, for each matrix the form of the pair with
+    // the fewest operations (they share nodes), and for ∂g/∂q the fewer.
+    if let Some(a) = analytical(&mut g, robot, &[PairFrame::Deeper, PairFrame::Ancestor]) {
+        let cost =
+            |g: &ExprGraph, x: &[ExprId], y: &[ExprId]| g.op_counts(&[x, y].concat()).total();
+        let forms = [
+            (&d_tau_dq, &d_tau_dqd),
+            (&a.d_tau_dq, &d_tau_dqd),
+            (&d_tau_dq, &a.d_tau_dqd),
+            (&a.d_tau_dq, &a.d_tau_dqd),
+        ];
+        let (x, y) = forms
+            .iter()
+            .min_by_key(|(x, y)| cost(&g, x, y))
+            .map(|(x, y)| (x.to_vec(), y.to_vec()))
+            .unwrap_or_default();
+        (d_tau_dq, d_tau_dqd) = (x, y);
+        if g.op_counts(&a.gravity_derivative).total() < g.op_counts(&gravity_derivative).total() {
+            gravity_derivative = a.gravity_derivative;
         }
     }
-    let gravity_derivative = tangent_jacobian(&mut g, &gravity, &seeds);
     // M⁻¹: columns M⁻¹ e_j, the lower triangle kept and mirrored.
     let (zero, one) = (g.zero(), g.one());
     let mut mass_matrix_inverse = vec![zero; nv * nv];

@@ -5,6 +5,7 @@
 use super::derivatives::{
     analytical, expand_derivatives, partials, tangent_jacobian, tangent_seeds, Derivatives,
 };
+use super::rnea_derivatives::PairFrame;
 use super::*;
 use dynamics_model::random::{random_chain, random_mimics, random_tree, ChainSpec, Rng, TreeSpec};
 use dynamics_model::Robot;
@@ -402,20 +403,29 @@ fn analytical_derivatives_equal_forward_mode() {
         let seeds = tangent_seeds(&mut g, false, d.dof);
         let dq = tangent_jacobian(&mut g, &id, &seeds);
         let dqd = partials(&mut g, &id, QD, d.nv);
-        let (a_dq, a_dqd) = analytical(&mut g, &r).expect("a fixed base without mimic joints");
-        for k in 0..3u64 {
-            let [q, v, a, tau] = state(&r, seed * 7 + k, 1.0);
-            for (what, x, y) in [("dτ/dq", &a_dq, &dq), ("dτ/dν", &a_dqd, &dqd)] {
-                let x = eval_at(&g, x, &q, &v, &a, &tau);
-                let y = eval_at(&g, y, &q, &v, &a, &tau);
-                let diff: Vec<f64> = x.iter().zip(&y).map(|(a, b)| a - b).collect();
-                assert!(
-                    max_abs(&diff) <= 1e-10 * max_abs(&y).max(1.0),
-                    "{} seed {seed}: {what} differs by {:e} (scale {:e})",
-                    r.name,
-                    max_abs(&diff),
-                    max_abs(&y)
-                );
+        let gravity = g.import(&d.graph, &d.gravity);
+        let dg = tangent_jacobian(&mut g, &gravity, &seeds);
+        for frame in [PairFrame::Deeper, PairFrame::Ancestor] {
+            let x = analytical(&mut g, &r, &[frame]).expect("a fixed base without mimic joints");
+            let (a_dq, a_dqd, a_dg) = (x.d_tau_dq, x.d_tau_dqd, x.gravity_derivative);
+            for k in 0..3u64 {
+                let [q, v, a, tau] = state(&r, seed * 7 + k, 1.0);
+                for (what, x, y) in [
+                    ("dτ/dq", &a_dq, &dq),
+                    ("dτ/dν", &a_dqd, &dqd),
+                    ("dg/dq", &a_dg, &dg),
+                ] {
+                    let x = eval_at(&g, x, &q, &v, &a, &tau);
+                    let y = eval_at(&g, y, &q, &v, &a, &tau);
+                    let diff: Vec<f64> = x.iter().zip(&y).map(|(a, b)| a - b).collect();
+                    assert!(
+                        max_abs(&diff) <= 1e-10 * max_abs(&y).max(1.0),
+                        "{} seed {seed} ({frame:?}): {what} differs by {:e} (scale {:e})",
+                        r.name,
+                        max_abs(&diff),
+                        max_abs(&y)
+                    );
+                }
             }
         }
         checked += 1;

@@ -126,14 +126,29 @@ fn inertia_rate(g: &mut ExprGraph, i: &Inertia, v: &Spatial) -> Inertia {
     }
 }
 
+/// Where the pair terms' dot products are taken; the results are equal, and which needs
+/// fewer operations depends on the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairFrame {
+    /// In the deeper joint's frame: the ancestors' `S_i`, `Ψ̇_i`, `Ψ̈_i` are carried down
+    /// the tree by twist transforms (three per pair).
+    Deeper,
+    /// In the ancestor's frame: the deeper joint's `α_k`, `β_k`, `P_k`, `R_k` are carried up
+    /// toward the base by wrench transforms (four per pair), where `S_i = e_z` makes three of
+    /// the six dot products a single component and `Ψ̇_i` is sparse.
+    Ancestor,
+}
+
 /// `(∂τ/∂q, ∂τ/∂q̇)`, n×n row-major, of a fixed-base tree's Newton–Euler inverse dynamics
-/// with the given joint rates (see the module docs); `base` as for [`super::rnea::rnea`].
+/// with the given joint rates (see the module docs), the pair terms in `frame`; `base` as for
+/// [`super::rnea::rnea`].
 pub fn rnea_derivatives(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
     base: &BaseMotion,
     qd: &[ExprId],
     qdd: &[ExprId],
+    frame: PairFrame,
 ) -> (Vec<ExprId>, Vec<ExprId>) {
     let n = joints.len();
     let mut vs: Vec<Spatial> = Vec::with_capacity(n);
@@ -203,6 +218,35 @@ pub fn rnea_derivatives(
     let zero = g.zero();
     let mut dq = vec![zero; n * n];
     let mut dqd = vec![zero; n * n];
+    if frame == PairFrame::Ancestor {
+        for k in 0..n {
+            let s = s_axis[k];
+            let [mut alpha, mut beta, mut p, mut r] =
+                pair_vectors(g, &ic[k], &dc[k], &hc[k], &fc[k], &s, &psi_d[k], &psi_dd[k]);
+            // Up the path from k to the base: at each joint i on it, in {J_i}.
+            let mut i = k;
+            loop {
+                let a = dot6(g, &alpha, &psi_dd[i]);
+                let b = dot6(g, &beta, &psi_d[i]);
+                dq[k * n + i] = g.add(a, b);
+                let a = dot6(g, &alpha, &psi_d[i]);
+                let a = g.cmul(2.0, a);
+                let b = dot6(g, &beta, &s_axis[i]);
+                dqd[k * n + i] = g.add(a, b);
+                if i != k {
+                    dq[i * n + k] = dot6(g, &s_axis[i], &p);
+                    dqd[i * n + k] = dot6(g, &s_axis[i], &r);
+                }
+                let Some(parent) = joints[i].frame.parent else {
+                    break;
+                };
+                let jm = &joints[i];
+                [alpha, beta, p, r] = [alpha, beta, p, r].map(|x| jm.force_to_parent(g, x));
+                i = parent;
+            }
+        }
+        return (dq, dqd);
+    }
     // For each joint k, its ancestors' (i, S_i, Ψ̇_i, Ψ̈_i) expressed in {J_k}, k itself last.
     let mut carried: Vec<Vec<(usize, Spatial, Spatial, Spatial)>> = Vec::with_capacity(n);
     for k in 0..n {
@@ -223,26 +267,9 @@ pub fn rnea_derivatives(
             None => Vec::new(),
         };
         list.push((k, s_axis[k], psi_d[k], psi_dd[k]));
-        let s = s_axis[k];
-        let alpha = ic[k].apply(g, &s);
-        let ds = dc[k].apply(g, &s);
-        let sh = cross_force(g, &s, &hc[k]);
-        let beta = sub6(g, &ds, &sh);
-        // P_k and R_k.
-        let i_pdd = ic[k].apply(g, &psi_dd[k]);
-        let d_pd = dc[k].apply(g, &psi_d[k]);
-        let pd_h = cross_force(g, &psi_d[k], &hc[k]);
-        let s_f = cross_force(g, &s, &fc[k]);
-        let p = add6(g, &i_pdd, &d_pd);
-        let p = add6(g, &p, &pd_h);
-        let p = add6(g, &p, &s_f);
-        let i_pd = ic[k].apply(g, &psi_d[k]);
-        let two_i_pd = Spatial {
-            ang: i_pd.ang.map(|x| g.cmul(2.0, x)),
-            lin: i_pd.lin.map(|x| g.cmul(2.0, x)),
-        };
-        let r = add6(g, &two_i_pd, &ds);
-        let r = add6(g, &r, &sh);
+        let [alpha, beta, p, r] = pair_vectors(
+            g, &ic[k], &dc[k], &hc[k], &fc[k], &s_axis[k], &psi_d[k], &psi_dd[k],
+        );
         for (i, si, pdi, pddi) in &list {
             let a = dot6(g, &alpha, pddi);
             let b = dot6(g, &beta, pdi);
@@ -259,4 +286,37 @@ pub fn rnea_derivatives(
         carried.push(list);
     }
     (dq, dqd)
+}
+
+/// `[α_k, β_k, P_k, R_k]` of joint k from its composites (see the module docs).
+#[allow(clippy::too_many_arguments)]
+fn pair_vectors(
+    g: &mut ExprGraph,
+    ic: &Inertia,
+    dc: &Inertia,
+    hc: &Spatial,
+    fc: &Spatial,
+    s: &Spatial,
+    psi_d: &Spatial,
+    psi_dd: &Spatial,
+) -> [Spatial; 4] {
+    let alpha = ic.apply(g, s);
+    let ds = dc.apply(g, s);
+    let sh = cross_force(g, s, hc);
+    let beta = sub6(g, &ds, &sh);
+    let i_pdd = ic.apply(g, psi_dd);
+    let d_pd = dc.apply(g, psi_d);
+    let pd_h = cross_force(g, psi_d, hc);
+    let s_f = cross_force(g, s, fc);
+    let p = add6(g, &i_pdd, &d_pd);
+    let p = add6(g, &p, &pd_h);
+    let p = add6(g, &p, &s_f);
+    let i_pd = ic.apply(g, psi_d);
+    let two_i_pd = Spatial {
+        ang: i_pd.ang.map(|x| g.cmul(2.0, x)),
+        lin: i_pd.lin.map(|x| g.cmul(2.0, x)),
+    };
+    let r = add6(g, &two_i_pd, &ds);
+    let r = add6(g, &r, &sh);
+    [alpha, beta, p, r]
 }
