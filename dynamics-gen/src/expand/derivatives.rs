@@ -185,6 +185,20 @@ pub(crate) fn analytical(
     best
 }
 
+/// `−A B` for `A`, `B` nv×nv row-major.
+fn neg_product(g: &mut ExprGraph, a: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
+    let nv = (a.len() as f64).sqrt() as usize;
+    let mut out = Vec::with_capacity(nv * nv);
+    for i in 0..nv {
+        for j in 0..nv {
+            let col: Vec<ExprId> = (0..nv).map(|k| b[k * nv + j]).collect();
+            let x = g.dot(&a[i * nv..(i + 1) * nv], &col);
+            out.push(g.neg(x));
+        }
+    }
+    out
+}
+
 /// Expands the derivatives of `d`, the dynamics of `robot` (see the module docs).
 pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     let nv = d.nv;
@@ -239,8 +253,25 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     };
     let dq = at_fd(&mut g, &d_tau_dq);
     let dqd = at_fd(&mut g, &d_tau_dqd);
-    let d_qdd_dq = neg_solve(&mut g, &h, &inv_d, &dq);
-    let d_qdd_dqd = neg_solve(&mut g, &h, &inv_d, &dqd);
+    // −M⁻¹ B by solves with the factor, or by the product with M⁻¹ (which the forward
+    // dynamics derivatives return anyway): the fewer operations.
+    let by_solve = [
+        neg_solve(&mut g, &h, &inv_d, &dq),
+        neg_solve(&mut g, &h, &inv_d, &dqd),
+    ];
+    let by_product = [
+        neg_product(&mut g, &mass_matrix_inverse, &dq),
+        neg_product(&mut g, &mass_matrix_inverse, &dqd),
+    ];
+    let cost = |g: &ExprGraph, x: &[Vec<ExprId>; 2]| {
+        g.op_counts(&[&x[0][..], &x[1][..], &mass_matrix_inverse[..]].concat())
+            .total()
+    };
+    let [d_qdd_dq, d_qdd_dqd] = if cost(&g, &by_product) < cost(&g, &by_solve) {
+        by_product
+    } else {
+        by_solve
+    };
     // Sums that cancel to zero (a tree's independent branches, symmetric terms) removed,
     // checked numerically as in `expand`.
     let roots: [&[ExprId]; 8] = [
