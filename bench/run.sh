@@ -6,7 +6,9 @@
 # Environment: ROBOTS (default "ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff";
 # NAME+ff puts the URDF on a free-flyer base), CALLS (100000), REPS (5),
 # CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR, CODEGEN=1 (also
-# Pinocchio's code-generated derivatives, bench/run_codegen.sh, fixed-base robots).
+# Pinocchio's code-generated derivatives, bench/run_codegen.sh, fixed-base robots), NATIVE (1, the default:
+# our code compiled for this CPU with RUSTFLAGS="-C target-cpu=native", as Pinocchio is with -march=native,
+# into target/bench-native; 0: for the toolchain's default target CPU, into target/bench-default).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -64,10 +66,19 @@ fi
 # 2. Our generated code, right after (criterion filter: the same robots).
 START=$(date +%s)
 FILTER="^($(echo "${NAMES[@]}" | tr ' ' '|'))/"
+# Both sides for this CPU by default (Pinocchio: -march=native); a target directory of its own,
+# so that the changed RUSTFLAGS do not rebuild the workspace's usual one.
+if [ "${NATIVE:-1}" = 1 ]; then
+  export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"
+  export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$ROOT/target/bench-native}
+else
+  export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$ROOT/target/bench-default}
+fi
+echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', CARGO_TARGET_DIR=$CARGO_TARGET_DIR"
 (cd "$ROOT" && cargo bench -p dynamics-tests --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
 
 # 3. Side by side: criterion medians of this run only (estimates.json newer than START).
-CRIT=${CARGO_TARGET_DIR:-$ROOT/target}/criterion
+CRIT=$CARGO_TARGET_DIR/criterion
 "$VENV/bin/python" - "$CACHE/pinocchio.txt" "$CRIT" "$START" <<'EOF'
 import json, os, sys
 pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])

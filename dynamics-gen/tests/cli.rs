@@ -316,6 +316,14 @@ fn help_names_the_shipped_robots() {
     for name in dynamics_gen::dynamics_model::shipped::NAMES {
         assert!(help.contains(name), "{name}: {help}");
     }
+    // Every function `--functions` accepts, in the order of the generated impl.
+    let list = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    for name in dynamics_gen::options::FUNCTIONS {
+        assert!(
+            list.contains(&format!(" {name},")) || list.contains(&format!(" {name}.")),
+            "--functions help lacks {name}: {help}"
+        );
+    }
 }
 
 #[test]

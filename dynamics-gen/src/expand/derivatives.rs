@@ -28,6 +28,14 @@
 //! expressions (which read [`TAU`]), and each column is solved with the factor of `M`
 //! (`−M⁻¹ b` by `ltdl_apply`, which keeps a tree's structural zeros).
 //!
+//! On a fixed base without mimic joints `∂τ/∂q`, `∂τ/∂q̇` and `∂g/∂q` are also expanded by
+//! the analytical recursion of Carpentier & Mansard ([`rnea_derivatives`], in joint frames,
+//! its pair terms in either frame of [`PairFrame`]), and each matrix keeps the form with the
+//! fewest operations (the pair of `∂τ` matrices counted together, as they share nodes): on
+//! the Panda the recursion needs 3,300 operations for both against 6,300 by forward mode.
+//! `−M⁻¹ B` is taken either by solves with the factor or as the product with `M⁻¹`, the
+//! fewer operations.
+//!
 //! Every matrix is nv×nv row-major, `[i * nv + j] = ∂f_i/∂x_j`.
 
 use super::rnea_derivatives::PairFrame;

@@ -117,7 +117,10 @@ pub struct GenerateArgs {
     /// forward_dynamics, kinetic_energy, mass_matrix_dot, friction, coriolis_matrix,
     /// mass_matrix_and_bias, end_effector_forces, inverse_dynamics_with_tip,
     /// forward_dynamics_with_tip, task_space_mass_matrix, task_space_bias,
-    /// constrained_forward_dynamics, potential_energy, end_effector_pose, jacobian_space,
+    /// constrained_forward_dynamics, inverse_dynamics_derivatives,
+    /// inverse_dynamics_with_derivatives, forward_dynamics_derivatives,
+    /// forward_dynamics_with_derivatives, mass_matrix_inverse, gravity_derivative,
+    /// potential_energy, end_effector_pose, jacobian_space,
     /// jacobian_body, jacobian_space_dot, jacobian_body_dot, frame_poses,
     /// frame_jacobians_space, frame_jacobians_body. The runtime trait needs the first five
     /// (or --no-runtime-trait).
