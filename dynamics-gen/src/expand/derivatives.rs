@@ -39,6 +39,7 @@
 //! Every matrix is nv×nv row-major, `[i * nv + j] = ∂f_i/∂x_j`.
 
 use super::rnea_derivatives::PairFrame;
+use super::spatial::VectorOps;
 #[cfg(doc)]
 use super::TAU;
 use super::{base, frames, input, ldlt, mimic, rnea_derivatives, Dynamics, Q, QD, QDD};
@@ -142,6 +143,8 @@ pub(crate) struct Analytical {
     pub d_tau_dqd: Vec<ExprId>,
     /// `∂g/∂q` (the same at `q̇ = q̈ = 0`).
     pub gravity_derivative: Vec<ExprId>,
+    /// `τ` from the same recursion (its composite wrenches), the armature included.
+    pub inverse_dynamics: Vec<ExprId>,
 }
 
 /// [`Analytical`] for a fixed-base robot without mimic joints (`None` otherwise): for each
@@ -165,14 +168,21 @@ pub(crate) fn analytical(
     let cost = |g: &ExprGraph, x: &[ExprId], y: &[ExprId]| g.op_counts(&[x, y].concat()).total();
     let mut best: Option<Analytical> = None;
     for &frame in pair_frames {
-        let (d_tau_dq, d_tau_dqd) =
+        let (d_tau_dq, d_tau_dqd, mut tau) =
             rnea_derivatives::rnea_derivatives(g, &motions, &base, &qd, &qdd, frame);
-        let (gravity_derivative, _) =
+        let (gravity_derivative, _, _) =
             rnea_derivatives::rnea_derivatives(g, &motions, &base, &zeros, &zeros, frame);
+        for (i, f) in frames.joints.iter().enumerate() {
+            if f.armature != 0.0 {
+                let t = g.cmul(f.armature, qdd[i]);
+                tau[i] = g.add(tau[i], t);
+            }
+        }
         let x = Analytical {
             d_tau_dq,
             d_tau_dqd,
             gravity_derivative,
+            inverse_dynamics: tau,
         };
         best = Some(match best {
             None => x,
@@ -212,7 +222,7 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     let nv = d.nv;
     let floating = d.nq != d.nv;
     let mut g = ExprGraph::new();
-    let id = g.import(&d.graph, &d.inverse_dynamics);
+    let mut id = g.import(&d.graph, &d.inverse_dynamics);
     let gravity = g.import(&d.graph, &d.gravity);
     let fd = g.import(&d.graph, &d.forward_dynamics);
     let h = g.import(&d.graph, &d.mass_matrix_factor);
@@ -240,6 +250,14 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
         (d_tau_dq, d_tau_dqd) = (x, y);
         if g.op_counts(&a.gravity_derivative).total() < g.op_counts(&gravity_derivative).total() {
             gravity_derivative = a.gravity_derivative;
+        }
+        // τ for the value-with-derivatives forms: read off the recursion where that is cheaper.
+        let with = |g: &ExprGraph, tau: &[ExprId]| {
+            g.op_counts(&[tau, &d_tau_dq[..], &d_tau_dqd[..]].concat())
+                .total()
+        };
+        if with(&g, &a.inverse_dynamics) < with(&g, &id) {
+            id = a.inverse_dynamics;
         }
     }
     // M⁻¹: columns M⁻¹ e_j, the lower triangle kept and mirrored.

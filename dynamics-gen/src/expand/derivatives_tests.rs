@@ -408,6 +408,7 @@ fn analytical_derivatives_equal_forward_mode() {
         for frame in [PairFrame::Deeper, PairFrame::Ancestor] {
             let x = analytical(&mut g, &r, &[frame]).expect("a fixed base without mimic joints");
             let (a_dq, a_dqd, a_dg) = (x.d_tau_dq, x.d_tau_dqd, x.gravity_derivative);
+            let a_tau = x.inverse_dynamics;
             for k in 0..3u64 {
                 let [q, v, a, tau] = state(&r, seed * 7 + k, 1.0);
                 for (what, x, y) in [

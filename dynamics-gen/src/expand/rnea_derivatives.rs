@@ -140,8 +140,8 @@ pub enum PairFrame {
 }
 
 /// `(∂τ/∂q, ∂τ/∂q̇)`, n×n row-major, of a fixed-base tree's Newton–Euler inverse dynamics
-/// with the given joint rates (see the module docs), the pair terms in `frame`; `base` as for
-/// [`super::rnea::rnea`].
+/// with the given joint rates (see the module docs), the pair terms in `frame`, and `τ`
+/// itself (`S_kᵀ F_k`, without armature); `base` as for [`super::rnea::rnea`].
 pub fn rnea_derivatives(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
@@ -149,7 +149,7 @@ pub fn rnea_derivatives(
     qd: &[ExprId],
     qdd: &[ExprId],
     frame: PairFrame,
-) -> (Vec<ExprId>, Vec<ExprId>) {
+) -> (Vec<ExprId>, Vec<ExprId>, Vec<ExprId>) {
     let n = joints.len();
     let mut vs: Vec<Spatial> = Vec::with_capacity(n);
     let mut vds: Vec<Spatial> = Vec::with_capacity(n);
@@ -215,6 +215,12 @@ pub fn rnea_derivatives(
             fc[p] = add6(g, &fc[p], &x);
         }
     }
+    let tau: Vec<ExprId> = (0..n)
+        .map(|k| match joints[k].frame.kind {
+            JointKind::Revolute => fc[k].ang[2],
+            JointKind::Prismatic => fc[k].lin[2],
+        })
+        .collect();
     let zero = g.zero();
     let mut dq = vec![zero; n * n];
     let mut dqd = vec![zero; n * n];
@@ -245,7 +251,7 @@ pub fn rnea_derivatives(
                 i = parent;
             }
         }
-        return (dq, dqd);
+        return (dq, dqd, tau);
     }
     // For each joint k, its ancestors' (i, S_i, Ψ̇_i, Ψ̈_i) expressed in {J_k}, k itself last.
     let mut carried: Vec<Vec<(usize, Spatial, Spatial, Spatial)>> = Vec::with_capacity(n);
@@ -285,7 +291,7 @@ pub fn rnea_derivatives(
         }
         carried.push(list);
     }
-    (dq, dqd)
+    (dq, dqd, tau)
 }
 
 /// `[α_k, β_k, P_k, R_k]` of joint k from its composites (see the module docs).
