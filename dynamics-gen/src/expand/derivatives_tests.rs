@@ -415,6 +415,7 @@ fn analytical_derivatives_equal_forward_mode() {
                     ("dτ/dq", &a_dq, &dq),
                     ("dτ/dν", &a_dqd, &dqd),
                     ("dg/dq", &a_dg, &dg),
+                    ("τ", &a_tau, &id),
                 ] {
                     let x = eval_at(&g, x, &q, &v, &a, &tau);
                     let y = eval_at(&g, y, &q, &v, &a, &tau);
