@@ -204,8 +204,7 @@ pub(crate) fn analytical(
 }
 
 /// `−A B` for `A`, `B` nv×nv row-major.
-fn neg_product(g: &mut ExprGraph, a: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
-    let nv = (a.len() as f64).sqrt() as usize;
+fn neg_product(g: &mut ExprGraph, nv: usize, a: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
     let mut out = Vec::with_capacity(nv * nv);
     for i in 0..nv {
         for j in 0..nv {
@@ -286,8 +285,8 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
         neg_solve(&mut g, &h, &inv_d, &dqd),
     ];
     let by_product = [
-        neg_product(&mut g, &mass_matrix_inverse, &dq),
-        neg_product(&mut g, &mass_matrix_inverse, &dqd),
+        neg_product(&mut g, nv, &mass_matrix_inverse, &dq),
+        neg_product(&mut g, nv, &mass_matrix_inverse, &dqd),
     ];
     let cost = |g: &ExprGraph, x: &[Vec<ExprId>; 2]| {
         g.op_counts(&[&x[0][..], &x[1][..], &mass_matrix_inverse[..]].concat())
