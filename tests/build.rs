@@ -341,4 +341,27 @@ fn main() {
         "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with the derivative functions and std trigonometry.\n#[macro_export]\nmacro_rules! with_derivative_cases {{\n    ($mac:ident) => {{\n{derivative_list}    }};\n}}\n"
     );
     std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
+
+    // The `joint_sin_cos` helper as the generated files carry it, for each scalar and
+    // `std`/`no_std`, behind a public wrapper (tests/trig.rs).
+    let mut kernels = String::new();
+    for (name, scalar, no_std) in [
+        ("F64Std", Scalar::F64, false),
+        ("F64NoStd", Scalar::F64, true),
+        ("F32Std", Scalar::F32, false),
+        ("F32NoStd", Scalar::F32, true),
+    ] {
+        let t = scalar.as_str();
+        let helper = dynamics_gen::emit::trig::sin_cos_helper(scalar, no_std);
+        writeln!(
+            kernels,
+            "/// The generated `joint_sin_cos` ({t}, no_std {no_std}).\n\
+             pub struct {name};\n\
+             impl {name} {{\n{helper}\n\
+             /// Calls the helper.\n\
+             pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos(x) }}\n}}"
+        )
+        .expect("writing to a String");
+    }
+    std::fs::write(out.join("trig_kernels.rs"), kernels).expect("OUT_DIR is writable");
 }

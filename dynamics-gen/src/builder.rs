@@ -75,7 +75,8 @@ impl Builder {
         self
     }
 
-    /// Emit `no_std` code (trigonometry through `::libm`, so the crate must depend on `libm`;
+    /// Emit `no_std` code (square roots, and the sines and cosines of angles beyond the
+    /// generated `joint_sin_cos` helper's range, through `::libm`, so the crate must depend on `libm`;
     /// [`Builder::write`] warns when the crate's `Cargo.toml` declares no `libm` dependency).
     pub fn no_std(mut self, no_std: bool) -> Self {
         self.options.no_std = no_std;

@@ -40,7 +40,8 @@ pub struct Options {
     pub name: Option<String>,
     /// The scalar type.
     pub scalar: Scalar,
-    /// Emit `no_std` code: `sin`/`cos` through `libm`, only `::core` and nalgebra paths.
+    /// Emit `no_std` code: only `::core`, nalgebra and `::libm` paths (`libm` for square
+    /// roots and for `sin`/`cos` beyond the range of the generated `joint_sin_cos`).
     pub no_std: bool,
     /// The path of the nalgebra crate in generated code (default `::nalgebra`).
     pub nalgebra_path: String,

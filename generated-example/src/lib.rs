@@ -9,7 +9,8 @@
 //! ```
 //!
 //! The generated functions are straight-line `f64` code over nalgebra's static matrices (no
-//! allocation, no loops, no panics); `sin`/`cos` come from `libm`. [`integrate`] holds the
+//! allocation, no panics, no loops but the one over the joints in the `joint_sin_cos` helper
+//! that vectorises the sines and cosines). [`integrate`] holds the
 //! fixed-step integrators the example and the tests use.
 
 #![no_std]

@@ -576,6 +576,13 @@ pub use generated::{CASES, DERIVATIVE_CASES};
 
 include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
 
+/// The generated files' `joint_sin_cos` helper for each scalar type, `std` and `no_std`
+/// (tests/trig.rs).
+pub mod trig_kernels {
+    #![allow(clippy::all)]
+    include!(concat!(env!("OUT_DIR"), "/trig_kernels.rs"));
+}
+
 /// The values of `roots` of an expanded graph with the inputs `q`, `q̇`, `q̈` and `τ` (groups
 /// `Q`, `QD`, `QDD`, `TAU`).
 pub fn eval_graph(

@@ -3,8 +3,8 @@
 //! panics. Meaningful in release builds only:
 //! `cargo test --release -p dynamics-tests --test no_panic`.
 //!
-//! The `no_std` variants are left out: their `libm::sinf`/`libm::sin` argument reduction
-//! holds bounds checks that the optimiser cannot prove unreachable, so `no_panic` rejects
+//! The `no_std` variants are left out: the `libm::sinf`/`libm::sin` they call for angles
+//! beyond the `joint_sin_cos` helper's range hold bounds checks in their argument reduction that the optimiser cannot prove unreachable, so `no_panic` rejects
 //! them although the generated code itself has none.
 
 #![allow(missing_docs)]

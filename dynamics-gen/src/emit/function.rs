@@ -4,7 +4,8 @@
 //! A node gets a `let` when the function uses it more than once, or when it is a division
 //! or square root; every other node is written inline into its single user. Inputs are
 //! unpacked by destructuring nalgebra's array storage (no indexing, so no panic path);
-//! `sin q_i` and `cos q_i` come from one `sin_cos` per argument; outputs are packed into
+//! `sin q_i` and `cos q_i` of all joints come from one call of the vectorised `joint_sin_cos`
+//! helper ([`super::trig`]), other arguments' from one call each; outputs are packed into
 //! `ArrayStorage` column by column. Bindings are numbered in graph order, which is
 //! deterministic, so the output is byte-identical across runs.
 
@@ -83,7 +84,7 @@ pub struct FunctionBody<'a> {
     pub output: Output,
     /// The scalar type.
     pub scalar: Scalar,
-    /// `no_std`: trigonometry through `libm`.
+    /// `no_std`: square roots through `libm`.
     pub no_std: bool,
     /// The nalgebra path tokens.
     pub nalgebra: &'a TokenStream,
@@ -201,6 +202,48 @@ impl FunctionBody<'_> {
         // last statement that reads it (`usize::MAX`: the outputs).
         let mut body: Vec<Statement> = Vec::new();
         let mut last_use = vec![0usize; g.len()];
+
+        // The sines and cosines of inputs (the joint angles) all at once, first: one call of
+        // the vectorised `joint_sin_cos` helper (see `trig`).
+        let batch: Vec<usize> = (0..trig.len())
+            .filter(|&t| matches!(g.node(trig[t].0), Node::Input(_)))
+            .collect();
+        if !batch.is_empty() {
+            let mut args = Vec::new();
+            let mut s_pats = Vec::new();
+            let mut c_pats = Vec::new();
+            let mut defined = Vec::new();
+            for &t in &batch {
+                let (arg, sin, cos) = trig[t];
+                let Node::Input(x) = g.node(arg) else {
+                    continue;
+                };
+                let (s, c) = (format_ident!("s{}", x.index), format_ident!("c{}", x.index));
+                args.push(self.operand(&bind, arg, 4));
+                self.note_uses(&bind, arg, 0, &mut last_use);
+                s_pats.push(self.trig_pattern(&mut bind, &mut defined, s, sin));
+                c_pats.push(self.trig_pattern(&mut bind, &mut defined, c, cos));
+                trig_done[t] = true;
+            }
+            // Padded with zeros to a whole number of vector registers (4 f64 or 8 f32 lanes
+            // of AVX2): the vectoriser leaves a loop of 7 or 6 scalar, and 8 costs the same
+            // as 4 + 3 without the tail.
+            let lanes = match self.scalar {
+                Scalar::F64 => 4,
+                Scalar::F32 => 8,
+            };
+            while args.len() % lanes != 0 && args.len() > 1 {
+                args.push(float_tokens(0.0, self.scalar));
+                s_pats.push(quote!(_));
+                c_pats.push(quote!(_));
+            }
+            body.push(Statement {
+                defined,
+                tokens: quote! {
+                    let ([#(#s_pats),*], [#(#c_pats),*]) = Self::joint_sin_cos([#(#args),*]);
+                },
+            });
+        }
         for k in 0..g.len() {
             if !live[k] {
                 continue;
@@ -224,30 +267,13 @@ impl FunctionBody<'_> {
                     let s = format_ident!("s{}", suffix);
                     let c = format_ident!("c{}", suffix);
                     let x = self.operand(&bind, *a, 4);
-                    let call = self.sin_cos_call(&x);
-                    let s_pat = if trig[t].1.is_some() {
-                        quote!(#s)
-                    } else {
-                        quote!(_)
-                    };
-                    let c_pat = if trig[t].2.is_some() {
-                        quote!(#c)
-                    } else {
-                        quote!(_)
-                    };
                     self.note_uses(&bind, *a, body.len(), &mut last_use);
                     let mut defined = Vec::new();
-                    if let Some(sid) = trig[t].1 {
-                        bind[sid.index()] = Binding::Named(s.clone());
-                        defined.push((s, sid));
-                    }
-                    if let Some(cid) = trig[t].2 {
-                        bind[cid.index()] = Binding::Named(c.clone());
-                        defined.push((c, cid));
-                    }
+                    let s_pat = self.trig_pattern(&mut bind, &mut defined, s, trig[t].1);
+                    let c_pat = self.trig_pattern(&mut bind, &mut defined, c, trig[t].2);
                     body.push(Statement {
                         defined,
-                        tokens: quote! { let (#s_pat, #c_pat) = #call; },
+                        tokens: quote! { let ([#s_pat], [#c_pat]) = Self::joint_sin_cos([#x]); },
                     });
                 }
                 _ => {
@@ -382,11 +408,21 @@ impl FunctionBody<'_> {
         quote!(Self::isometry([[#(#r0),*], [#(#r1),*], [#(#r2),*]], [#(#p),*]))
     }
 
-    fn sin_cos_call(&self, x: &TokenStream) -> TokenStream {
-        match (self.no_std, self.scalar) {
-            (false, _) => quote!(#x.sin_cos()),
-            (true, Scalar::F64) => quote!((::libm::sin(#x), ::libm::cos(#x))),
-            (true, Scalar::F32) => quote!((::libm::sinf(#x), ::libm::cosf(#x))),
+    /// The pattern binding a sine or cosine named `name` (node `id`, if live), or `_`.
+    fn trig_pattern(
+        &self,
+        bind: &mut [Binding],
+        defined: &mut Vec<(Ident, ExprId)>,
+        name: Ident,
+        id: Option<ExprId>,
+    ) -> TokenStream {
+        match id {
+            Some(id) => {
+                bind[id.index()] = Binding::Named(name.clone());
+                defined.push((name.clone(), id));
+                quote!(#name)
+            }
+            None => quote!(_),
         }
     }
 

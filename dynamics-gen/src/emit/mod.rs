@@ -11,6 +11,7 @@ pub mod function;
 pub mod literal;
 pub mod provenance;
 pub mod text;
+pub mod trig;
 
 use crate::error::Error;
 use crate::expand::kinematics::{expand_kinematics, Kinematics};
@@ -231,6 +232,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         function::mul_add_helper(options.scalar)
     };
+    let sin_cos_fn = trig::sin_cos_helper(options.scalar, options.no_std);
     let impl_block = quote! {
         #allow
         #[rustfmt::skip]
@@ -332,6 +334,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #kinematics_fns
 
             #mul_add_fn
+
+            #sin_cos_fn
         }
     };
     let impl_block = select_functions(impl_block, &robot, options)?;
@@ -812,15 +816,31 @@ fn select_functions(
         }
         _ => true,
     });
-    // `mul_add` stays while a selected function calls it.
-    let calls_mul_add = item.items.iter().any(|it| match it {
-        syn::ImplItem::Fn(f) if f.sig.ident != "mul_add" => {
-            f.block.to_token_stream().to_string().contains("mul_add")
-        }
-        _ => false,
-    });
+    // `mul_add` and `joint_sin_cos` stay while a selected function calls them.
+    let bodies: Vec<(String, String)> = item
+        .items
+        .iter()
+        .filter_map(|it| match it {
+            syn::ImplItem::Fn(f) => Some((
+                f.sig.ident.to_string(),
+                f.block.to_token_stream().to_string(),
+            )),
+            _ => None,
+        })
+        .collect();
+    let called = |helper: &str| {
+        bodies
+            .iter()
+            .any(|(name, body)| name != helper && body.contains(helper))
+    };
+    let keep = [
+        ("mul_add", called("mul_add")),
+        ("joint_sin_cos", called("joint_sin_cos")),
+    ];
     item.items.retain(|it| match it {
-        syn::ImplItem::Fn(f) if f.sig.ident == "mul_add" => calls_mul_add,
+        syn::ImplItem::Fn(f) => keep
+            .iter()
+            .all(|(helper, kept)| f.sig.ident != helper || *kept),
         _ => true,
     });
     Ok(quote!(#item))

@@ -100,7 +100,7 @@ pub struct GenerateArgs {
     /// The scalar type of the generated code.
     #[arg(long, default_value = "f64", value_parser = parse_scalar)]
     pub scalar: Scalar,
-    /// Emit no_std code (sin/cos through `::libm`).
+    /// Emit no_std code (square roots, and sin/cos beyond |q| = 1e6, through `::libm`).
     #[arg(long)]
     pub no_std: bool,
     /// The path of the nalgebra crate in the generated code.
