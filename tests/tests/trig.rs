@@ -6,6 +6,9 @@
 
 use dynamics_tests::trig_kernels::{F32NoStd, F32Std, F64NoStd, F64Std};
 
+/// A kernel over 8 lanes.
+type Kernel<T> = fn([T; 8]) -> ([T; 8], [T; 8]);
+
 /// splitmix64: a seeded generator for the arguments.
 struct Rng(u64);
 
@@ -47,7 +50,7 @@ fn ulps_f32(x: f32, y: f64) -> f64 {
 }
 
 /// The largest error (sin, cos, and the argument of each) over `xs`, by the f64 kernel `f`.
-fn worst_f64(xs: &[f64], f: fn([f64; 8]) -> ([f64; 8], [f64; 8])) -> (f64, f64, f64, f64) {
+fn worst_f64(xs: &[f64], f: Kernel<f64>) -> (f64, f64, f64, f64) {
     let mut worst = (0.0, 0.0, 0.0, 0.0);
     for chunk in xs.chunks_exact(8) {
         let x: [f64; 8] = chunk.try_into().expect("8 elements");
@@ -68,7 +71,7 @@ fn worst_f64(xs: &[f64], f: fn([f64; 8]) -> ([f64; 8], [f64; 8])) -> (f64, f64, 
     worst
 }
 
-fn worst_f32(xs: &[f32], f: fn([f32; 8]) -> ([f32; 8], [f32; 8])) -> (f64, f32, f64, f32) {
+fn worst_f32(xs: &[f32], f: Kernel<f32>) -> (f64, f32, f64, f32) {
     let mut worst = (0.0, 0.0, 0.0, 0.0);
     for chunk in xs.chunks_exact(8) {
         let x: [f32; 8] = chunk.try_into().expect("8 elements");
@@ -121,7 +124,7 @@ fn f64_arguments() -> Vec<f64> {
     }));
     xs.extend(near_multiples(636_619, 7));
     xs.extend([0.0, -0.0, 1e-320, -1e-320, 1e6, -1e6, 1e4, -1e4]);
-    while xs.len() % 8 != 0 {
+    while !xs.len().is_multiple_of(8) {
         xs.push(0.5);
     }
     xs
@@ -158,7 +161,7 @@ fn f32_within_two_ulp() {
             xs.push(-f32::from_bits(d));
         }
     }
-    while xs.len() % 8 != 0 {
+    while !xs.len().is_multiple_of(8) {
         xs.push(0.5);
     }
     for (name, f) in [

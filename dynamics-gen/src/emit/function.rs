@@ -205,9 +205,20 @@ impl FunctionBody<'_> {
 
         // The sines and cosines of inputs (the joint angles) all at once, first: one call of
         // the vectorised `joint_sin_cos` helper (see `trig`).
+        // Arguments of the form `a·q_i + b` (joint offsets folded in, mimic joints) are
+        // written inline into the batch; when sines and cosines are their only users, they
+        // get no `let` of their own.
         let batch: Vec<usize> = (0..trig.len())
-            .filter(|&t| matches!(g.node(trig[t].0), Node::Input(_)))
+            .filter(|&t| of_one_input(g, trig[t].0, 3))
             .collect();
+        let mut inline_only = vec![false; g.len()];
+        for &t in &batch {
+            let (arg, sin, cos) = trig[t];
+            let trig_uses = u32::from(sin.is_some()) + u32::from(cos.is_some());
+            if !matches!(g.node(arg), Node::Input(_)) && uses[arg.index()] == trig_uses {
+                inline_only[arg.index()] = true;
+            }
+        }
         if !batch.is_empty() {
             let mut args = Vec::new();
             let mut s_pats = Vec::new();
@@ -215,11 +226,12 @@ impl FunctionBody<'_> {
             let mut defined = Vec::new();
             for &t in &batch {
                 let (arg, sin, cos) = trig[t];
-                let Node::Input(x) = g.node(arg) else {
-                    continue;
+                let suffix = match g.node(arg) {
+                    Node::Input(x) => format!("{}", x.index),
+                    _ => format!("_{}", arg.0),
                 };
-                let (s, c) = (format_ident!("s{}", x.index), format_ident!("c{}", x.index));
-                args.push(self.operand(&bind, arg, 4));
+                let (s, c) = (format_ident!("s{}", suffix), format_ident!("c{}", suffix));
+                args.push(self.expr(&bind, arg));
                 self.note_uses(&bind, arg, 0, &mut last_use);
                 s_pats.push(self.trig_pattern(&mut bind, &mut defined, s, sin));
                 c_pats.push(self.trig_pattern(&mut bind, &mut defined, c, cos));
@@ -252,6 +264,7 @@ impl FunctionBody<'_> {
             let node = g.node(id);
             match node {
                 Node::Const(_) | Node::Input(_) => continue,
+                _ if inline_only[k] => continue,
                 Node::Sin(a) | Node::Cos(a) => {
                     let Some(t) = trig.iter().position(|t| t.0 == *a) else {
                         continue;
@@ -569,6 +582,27 @@ impl FunctionBody<'_> {
             }
         }
     }
+}
+
+/// Whether `id` is an input, or sums, differences, products and negations of one input and
+/// constants at most `depth` operations deep (`q_i`, `q_i + b`, `a·q_i + b`, …).
+fn of_one_input(g: &ExprGraph, id: ExprId, depth: u32) -> bool {
+    fn input_of(g: &ExprGraph, id: ExprId, depth: u32) -> Option<Option<Input>> {
+        // Some(None): constants only; Some(Some(x)): constants and the input x.
+        match *g.node(id) {
+            Node::Const(_) => Some(None),
+            Node::Input(x) => Some(Some(x)),
+            Node::Neg(a) if depth > 0 => input_of(g, a, depth - 1),
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) if depth > 0 => {
+                match (input_of(g, a, depth - 1)?, input_of(g, b, depth - 1)?) {
+                    (Some(x), Some(y)) if x != y => None,
+                    (x, y) => Some(x.or(y)),
+                }
+            }
+            _ => None,
+        }
+    }
+    matches!(input_of(g, id, depth), Some(Some(_)))
 }
 
 /// The private `mul_add(a, b, c) = a·b + c` helper of a generated `std` impl, which every

@@ -762,9 +762,22 @@ fn select_functions(
     robot: &Robot,
     options: &Options,
 ) -> Result<TokenStream, Error> {
-    let Some(selected) = &options.functions else {
-        return Ok(impl_block);
-    };
+    let mut item: syn::ItemImpl = syn::parse2(impl_block)
+        .map_err(|e| Error::Internal(format!("generated impl does not parse: {e}")))?;
+    if let Some(selected) = &options.functions {
+        retain_selected(&mut item, selected, robot, options)?;
+    }
+    finish_helpers(&mut item);
+    Ok(quote!(#item))
+}
+
+/// Checks the selection and keeps only the selected functions and the helpers they call.
+fn retain_selected(
+    item: &mut syn::ItemImpl,
+    selected: &[String],
+    robot: &Robot,
+    options: &Options,
+) -> Result<(), Error> {
     let known = crate::options::FUNCTIONS;
     let list = || known.join(", ");
     for name in selected {
@@ -797,8 +810,6 @@ fn select_functions(
             });
         }
     }
-    let mut item: syn::ItemImpl = syn::parse2(impl_block)
-        .map_err(|e| Error::Internal(format!("generated impl does not parse: {e}")))?;
     let wanted = |name: &str| selected.iter().any(|s| s == name);
     item.items.retain(|it| match it {
         syn::ImplItem::Fn(f) => {
@@ -816,7 +827,12 @@ fn select_functions(
         }
         _ => true,
     });
-    // `mul_add` and `joint_sin_cos` stay while a selected function calls them.
+    Ok(())
+}
+
+/// Removes `mul_add` and `joint_sin_cos` where no function calls them.
+fn finish_helpers(item: &mut syn::ItemImpl) {
+    // `mul_add` and `joint_sin_cos` stay while a function calls them.
     let bodies: Vec<(String, String)> = item
         .items
         .iter()
@@ -843,7 +859,6 @@ fn select_functions(
             .all(|(helper, kept)| f.sig.ident != helper || *kept),
         _ => true,
     });
-    Ok(quote!(#item))
 }
 
 /// The private helpers of the generated impl and the functions that call them.
