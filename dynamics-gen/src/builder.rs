@@ -134,6 +134,15 @@ impl Builder {
         self
     }
 
+    /// URDF: reads `rpy` angles within `tol` (rad, at most 1e-2) of a multiple of π/2 as
+    /// that multiple ([`dynamics_model::LoadOptions::snap_angles`]; default 1e-9). For files
+    /// that write `1.5708` for π/2: axis-aligned frames need far fewer operations. The robot
+    /// changes by up to `tol`.
+    pub fn snap_angles(mut self, tol: f64) -> Self {
+        self.options.load.snap_angles = Some(tol);
+        self
+    }
+
     /// Include the joints' friction (`b q̇ + μ sgn(q̇)` from the robot file) in
     /// `inverse_dynamics`, `forward_dynamics`, their `_with_tip` forms and
     /// `constrained_forward_dynamics`. Off by default (URDF damping values are often

@@ -627,3 +627,76 @@ fn eval_gives_the_task_space_where_it_exists() {
     // The UR5's home configuration is singular (wrist axes 4 and 6 aligned).
     assert!(lines[1]["task_space_mass_matrix"].is_null(), "{stdout}");
 }
+
+/// `stats` on a URDF that writes 1.5708 for π/2 lists the six angles and what
+/// `--snap-angles` would save; with the option the list is gone and the counts are those of
+/// the exact file, and `generate` records the option in the header and the regenerate line.
+#[test]
+fn snap_angles_listed_by_stats_and_applied() {
+    let exact = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/robots/panda.urdf"
+    );
+    let rounded = std::fs::read_to_string(exact)
+        .unwrap()
+        .replace("1.5707963267948966", "1.5708");
+    let path = std::env::temp_dir().join(format!("dynamics-gen-snap-{}.urdf", std::process::id()));
+    std::fs::write(&path, rounded).unwrap();
+    let p = path.to_str().unwrap();
+    let out = run(&["stats", p, "--tip", "panda_hand"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stats = text(&out.stdout);
+    assert!(
+        stats.contains("6 rpy angles lie within 1e-4 rad of a multiple of pi/2 but are used as written (tolerance 1e-9):"),
+        "{stats}"
+    );
+    assert!(stats.contains(
+        "joint `panda_joint2` origin roll = -1.5708 (3.7e-6 rad from a multiple of pi/2)"
+    ));
+    assert!(stats.contains("with --snap-angles 4e-6 (the robot changes by up to that angle)"));
+    let line = |s: &str, f: &str| -> String {
+        s.lines()
+            .find(|l| l.split_whitespace().next() == Some(f))
+            .unwrap_or_else(|| panic!("{f} in {s}"))
+            .to_string()
+    };
+    // The saving reported is the count of the exactly written Panda.
+    let exact_stats = text(&run(&["stats", exact, "--tip", "panda_hand"]).stdout);
+    let snapped = text(&run(&["stats", p, "--tip", "panda_hand", "--snap-angles", "4e-6"]).stdout);
+    assert!(!snapped.contains("rpy angles lie within"), "{snapped}");
+    let count = |l: String| -> usize {
+        let w: Vec<usize> = l
+            .split_whitespace()
+            .skip(1)
+            .take(2)
+            .map(|x| x.parse().unwrap())
+            .collect();
+        w[0] + w[1]
+    };
+    let exact_mm = count(line(&exact_stats, "mass_matrix"));
+    assert_eq!(count(line(&snapped, "mass_matrix")), exact_mm);
+    assert!(
+        stats
+            .lines()
+            .any(|l| l.starts_with("  mass_matrix ") && l.ends_with(&format!("-> {exact_mm:>8}"))),
+        "{stats}"
+    );
+    let out = run(&[
+        "generate",
+        p,
+        "--tip",
+        "panda_hand",
+        "--snap-angles",
+        "4e-6",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let code = text(&out.stdout);
+    assert!(
+        code.contains("rpy angles within 4e-6 rad of a multiple of π/2 read as exact (by option)")
+    );
+    assert!(code.contains("--snap-angles=4e-6"));
+    let out = run(&["generate", "mr_ur5", "--snap-angles", "1e-5"]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("`snap_angles` applies to URDF files only"));
+    std::fs::remove_file(&path).ok();
+}

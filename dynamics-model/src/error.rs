@@ -126,6 +126,14 @@ pub enum ModelError {
     /// The description parses but describes an invalid or unsupported robot.
     #[error("{}", join(.0))]
     Invalid(Vec<Invalid>),
+    /// A loader option that does not apply to this file or has an invalid value.
+    #[error("{file}: {message}")]
+    BadOption {
+        /// The file.
+        file: String,
+        /// What is wrong, and the fix.
+        message: String,
+    },
     /// A robot name that is neither a file nor a shipped robot.
     #[error("unknown robot `{name}`: not a file, and not a shipped robot (shipped: {})", .known.join(", "))]
     UnknownRobot {

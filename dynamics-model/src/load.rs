@@ -51,7 +51,18 @@ pub struct LoadOptions {
     /// file by `rotor_inertia = value, gear_ratio = 1`. Any format; an unknown joint or a
     /// negative or non-finite value is refused.
     pub armature: Vec<(String, f64)>,
+    /// URDF: `rpy` angles of `<origin>`s (joints' and inertials') within this distance (rad)
+    /// of a multiple of π/2 are read as that multiple, so that a file that writes `1.5708`
+    /// for π/2 gets the exact right-angle frames (and the generated code the few operations
+    /// of axis-aligned joints). `None`: 1e-9 ([`crate::urdf::origin::SNAP_TOL`]), the decimals of π/2
+    /// only. The robot is then the file's robot with those angles changed by up to this
+    /// much: opt in knowingly (at most 1e-2; refused for TOML files, which can write exact
+    /// angles or matrices).
+    pub snap_angles: Option<f64>,
 }
+
+/// The largest [`LoadOptions::snap_angles`] accepted (rad).
+pub const MAX_SNAP_ANGLES: f64 = 1e-2;
 
 /// The name standard input has in errors.
 pub const STDIN_NAME: &str = "<stdin>";
@@ -147,10 +158,24 @@ fn parse(
     file: &str,
     options: &LoadOptions,
 ) -> Result<Robot, ModelError> {
+    if let Some(tol) = options.snap_angles {
+        if !(0.0..=MAX_SNAP_ANGLES).contains(&tol) {
+            return Err(ModelError::BadOption {
+                file: file.to_string(),
+                message: format!("snap_angles must be between 0 and {MAX_SNAP_ANGLES:e} rad, found {tol:e}: give the largest distance (rad) from a multiple of π/2 that should count as exact, e.g. 1e-5 for files that write 1.5708"),
+            });
+        }
+    }
     let mut robot = match format {
         Format::Toml => {
+            if options.snap_angles.is_some() {
+                return Err(ModelError::BadOption {
+                    file: file.to_string(),
+                    message: "`snap_angles` applies to URDF files only; write exact angles (1.5707963267948966) or 4×4 matrices in a TOML file".into(),
+                });
+            }
             if options.tip.is_some() || !options.lock.is_empty() {
-                return Err(ModelError::Io {
+                return Err(ModelError::BadOption {
                     file: file.to_string(),
                     message: "`tip` and `lock` apply to URDF files only; a TOML file states its chain and end effector itself".into(),
                 });

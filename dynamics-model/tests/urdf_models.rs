@@ -153,3 +153,85 @@ fn shipped_ur5_is_the_test_file() {
     assert_eq!(tool.end_effector.home, want);
     assert_eq!(tool.end_effector.name, "tool0");
 }
+
+/// `snap_angles`: a Panda that writes 1.5708 for π/2 (3.7e-6 rad off) is, with
+/// `snap_angles = 1e-5`, exactly the Panda that writes π/2 to full precision; without it, it
+/// keeps the file's angles. TOML files and tolerances above 1e-2 are refused.
+#[test]
+fn snap_angles_makes_near_right_angles_exact() {
+    let exact_text = robot_text("panda.urdf");
+    let rounded_text = exact_text.replace("1.5707963267948966", "1.5708");
+    assert!(rounded_text.matches("1.5708").count() >= 6);
+    let exact = load_text(&exact_text, "panda.urdf", &LoadOptions::default()).expect("loads");
+    let as_written = load_text(&rounded_text, "p.urdf", &LoadOptions::default()).expect("loads");
+    let snapped = load_text(
+        &rounded_text,
+        "p.urdf",
+        &LoadOptions {
+            snap_angles: Some(1e-5),
+            ..Default::default()
+        },
+    )
+    .expect("loads");
+    let frames = |r: &dynamics_model::Robot| -> Vec<f64> {
+        r.home_poses()
+            .iter()
+            .flat_map(|m| m.iter().copied())
+            .chain(r.joints.iter().flat_map(|j| j.screw.iter().copied()))
+            .collect()
+    };
+    let (e, w, s) = (frames(&exact), frames(&as_written), frames(&snapped));
+    let diff = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    assert_eq!(diff(&e, &s), 0.0, "snapped = exact, bit for bit");
+    assert!(
+        diff(&e, &w) > 1e-7,
+        "as written, the frames are 3.7e-6 rad off"
+    );
+    for (a, b) in exact.links.iter().zip(&snapped.links) {
+        assert_eq!(a.inertia.0, b.inertia.0);
+    }
+    // Only the distances in (1e-9, 1e-4] are listed.
+    let near = dynamics_model::urdf::near_right_angles(&rounded_text, "p.urdf", 1e-9, 1e-4)
+        .expect("parses");
+    assert_eq!(near.len(), 6, "{near:?}");
+    assert!(near
+        .iter()
+        .all(|a| a.element.starts_with("joint `panda_joint") && a.index == 0));
+    assert!(
+        dynamics_model::urdf::near_right_angles(&exact_text, "panda.urdf", 1e-9, 1e-4)
+            .expect("parses")
+            .is_empty()
+    );
+    // Refusals.
+    let too_wide = error_of(
+        &rounded_text,
+        "p.urdf",
+        &LoadOptions {
+            snap_angles: Some(0.5),
+            ..Default::default()
+        },
+    );
+    assert!(
+        too_wide.contains("snap_angles must be between 0 and 1e-2 rad, found 5e-1"),
+        "{too_wide}"
+    );
+    let toml = dynamics_model::load::from_str(
+        "",
+        dynamics_model::Format::Toml,
+        "arm.toml",
+        &LoadOptions {
+            snap_angles: Some(1e-5),
+            ..Default::default()
+        },
+    )
+    .expect_err("refused");
+    assert_eq!(
+        toml.to_string(),
+        "arm.toml: `snap_angles` applies to URDF files only; write exact angles (1.5707963267948966) or 4×4 matrices in a TOML file"
+    );
+}

@@ -27,6 +27,7 @@ fn compare(urdf: &str, json: &str) -> (f64, f64) {
         floating_base: false,
         gravity: None,
         armature: Vec::new(),
+        snap_angles: None,
     };
     let robot = load_text(&text, urdf, &options).expect("loads");
 

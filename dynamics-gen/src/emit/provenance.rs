@@ -187,6 +187,11 @@ fn describe(generated: &Generated, options: &Options) -> String {
         let names: Vec<String> = functions.iter().map(|f| inert(f)).collect();
         parts.push(format!("functions {}", names.join(", ")));
     }
+    if let Some(tol) = options.load.snap_angles {
+        parts.push(format!(
+            "rpy angles within {tol:e} rad of a multiple of π/2 read as exact (by option)"
+        ));
+    }
     if !options.load.lock.is_empty() {
         let locks: Vec<String> = options
             .load

@@ -153,17 +153,32 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     }
                 }
                 "friction_smoothing" => {
-                    let tt: TokenTree = meta.value()?.parse()?;
-                    let v = parse_value(std::slice::from_ref(&tt), errors);
-                    if let Some(x) = v.numbers(errors).and_then(|x| x.first().copied()) {
-                        if x.is_finite() && x > 0.0 {
+                    let expr: syn::Expr = meta.value()?.parse()?;
+                    let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
+                    match number::evaluate(&tokens) {
+                        Ok(x) if x.is_finite() && x > 0.0 => {
                             attr.options.friction = Some(crate::options::Friction::Smooth(x));
-                        } else {
-                            errors.at(
-                                &tt,
-                                format!("`friction_smoothing` must be > 0 (rad/s or m/s), found {x}"),
-                            );
                         }
+                        Ok(x) => errors.at(
+                            &expr,
+                            format!("`friction_smoothing` must be > 0 (rad/s or m/s), found {x}"),
+                        ),
+                        Err(e) => errors.push(e),
+                    }
+                }
+                "snap_angles" => {
+                    let expr: syn::Expr = meta.value()?.parse()?;
+                    let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
+                    let max = dynamics_model::load::MAX_SNAP_ANGLES;
+                    match number::evaluate(&tokens) {
+                        Ok(x) if (0.0..=max).contains(&x) => {
+                            attr.options.load.snap_angles = Some(x);
+                        }
+                        Ok(x) => errors.at(
+                            &expr,
+                            format!("`snap_angles` must be between 0 and {max:e} rad, found {x}: the largest distance from a multiple of π/2 to read as exact, e.g. 1e-5 for files that write 1.5708"),
+                        ),
+                        Err(e) => errors.push(e),
                     }
                 }
                 "method" => {
@@ -182,7 +197,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, method = \"newton_euler\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, snap_angles = TOL, method = \"newton_euler\"",
                         meta.path.to_token_stream()
                     )))
                 }

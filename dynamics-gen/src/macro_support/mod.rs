@@ -70,7 +70,8 @@
 //! tree's leaf links) and `lock(JOINT = VALUE, ..)`; `functions(NAME, ..)` (generate only
 //! these), `armature(JOINT = VALUE, ..)` (G²·I_rotor, kg·m²), `friction` (the joints'
 //! damping and Coulomb friction in inverse and forward dynamics) and
-//! `friction_smoothing = EPS` (the same with `μ tanh(q̇/ε)`).
+//! `friction_smoothing = EPS` (the same with `μ tanh(q̇/ε)`); for URDF `snap_angles = TOL`
+//! (`rpy` angles within TOL rad of a multiple of π/2 read as exact; at most 1e-2).
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the
 //! file changes. The environment variable [`derive::MANIFEST_DIR_OVERRIDE`] replaces
 //! `CARGO_MANIFEST_DIR` when set.

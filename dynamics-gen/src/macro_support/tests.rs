@@ -448,3 +448,47 @@ fn rotor_and_friction_fields_reach_the_joints_and_the_mass_matrix() {
     };
     assert!((m(&geared) - m(&plain) - 1.0).abs() < 1e-12);
 }
+
+#[test]
+fn derive_snap_angles_option_is_read_and_checked() {
+    let parse = |input: syn::DeriveInput| {
+        let mut errors = value::Errors::default();
+        let attr = derive::parse_attrs(&input, &mut errors);
+        (
+            attr.options.load.snap_angles,
+            errors.take().map(|e| e.to_string()),
+        )
+    };
+    let ok: syn::DeriveInput = syn::parse_quote! {
+        #[dynamics(file = "arm.urdf", snap_angles = 1e-5)]
+        struct Arm;
+    };
+    assert_eq!(parse(ok), (Some(1e-5), None));
+    let wide: syn::DeriveInput = syn::parse_quote! {
+        #[dynamics(file = "arm.urdf", snap_angles = 0.5)]
+        struct Arm;
+    };
+    let (snap, error) = parse(wide);
+    assert_eq!(snap, None);
+    assert!(
+        error.as_deref().is_some_and(
+            |e| e.starts_with("`snap_angles` must be between 0 and 1e-2 rad, found 0.5")
+        ),
+        "{error:?}"
+    );
+}
+
+#[test]
+fn derive_friction_smoothing_takes_a_number() {
+    let input: syn::DeriveInput = syn::parse_quote! {
+        #[dynamics(file = "arm.urdf", friction_smoothing = 0.05)]
+        struct Arm;
+    };
+    let mut errors = value::Errors::default();
+    let attr = derive::parse_attrs(&input, &mut errors);
+    assert!(errors.take().is_none());
+    assert_eq!(
+        attr.options.friction,
+        Some(crate::options::Friction::Smooth(0.05))
+    );
+}

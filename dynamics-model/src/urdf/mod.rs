@@ -105,11 +105,27 @@ use crate::robot::Robot;
 /// here; `options.gravity` is applied by the caller ([`crate::load::from_str`]), which also
 /// validates the result.
 pub fn from_str(text: &str, file: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
-    let urdf = parse::read(text, file)?;
+    let mut urdf = parse::read(text, file)?;
+    if let Some(tol) = options.snap_angles {
+        origin::snap_rpy(&mut urdf, tol);
+    }
     let mut robot =
         convert_robot(&urdf, options).map_err(|e| ModelError::Invalid(e).in_file(file))?;
     robot.source = file.to_string();
     Ok(robot)
+}
+
+/// The `rpy` angles of a URDF text's `<origin>`s whose distance from a multiple of π/2 is
+/// in `(above, up_to]` ([`origin::near_right_angles`]): what `snap_angles` = `up_to` would
+/// change beyond a tolerance `above`.
+pub fn near_right_angles(
+    text: &str,
+    file: &str,
+    above: f64,
+    up_to: f64,
+) -> Result<Vec<origin::NearRightAngle>, ModelError> {
+    let urdf = parse::read(text, file)?;
+    Ok(origin::near_right_angles(&urdf, above, up_to))
 }
 
 /// The parsed URDF to a robot; every error found on the way, without the file name.

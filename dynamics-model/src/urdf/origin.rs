@@ -43,6 +43,74 @@ pub fn rpy_rotation(rpy: [f64; 3]) -> Matrix3<f64> {
     rz * ry * rx
 }
 
+/// `a` as exactly `k·π/2` when it is within `tol` of that multiple, otherwise unchanged.
+pub fn snap_to_right_angle(a: f64, tol: f64) -> f64 {
+    let k = (a / core::f64::consts::FRAC_PI_2).round();
+    if k.abs() < 4.0e15 && (a - k * core::f64::consts::FRAC_PI_2).abs() <= tol {
+        k * core::f64::consts::FRAC_PI_2
+    } else {
+        a
+    }
+}
+
+/// An `rpy` angle of a URDF `<origin>` near a multiple of π/2 but not on it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NearRightAngle {
+    /// Where: `joint `NAME`` or `link `NAME` inertial`.
+    pub element: String,
+    /// Which angle: 0 roll, 1 pitch, 2 yaw.
+    pub index: usize,
+    /// The angle as written (rad).
+    pub value: f64,
+    /// Its distance from the nearest multiple of π/2 (rad).
+    pub distance: f64,
+}
+
+/// The `rpy` angles of every joint's and inertial's `<origin>` of `urdf` whose distance
+/// from a multiple of π/2 is in `(above, up_to]`, in file order.
+pub fn near_right_angles(urdf: &urdf_rs::Robot, above: f64, up_to: f64) -> Vec<NearRightAngle> {
+    let origins = urdf
+        .joints
+        .iter()
+        .map(|j| (format!("joint `{}`", j.name), &j.origin))
+        .chain(
+            urdf.links
+                .iter()
+                .map(|l| (format!("link `{}` inertial", l.name), &l.inertial.origin)),
+        );
+    let mut out = Vec::new();
+    for (element, origin) in origins {
+        for (index, &value) in origin.rpy.0.iter().enumerate() {
+            let k = (value / core::f64::consts::FRAC_PI_2).round();
+            let distance = (value - k * core::f64::consts::FRAC_PI_2).abs();
+            if distance > above && distance <= up_to {
+                out.push(NearRightAngle {
+                    element: element.clone(),
+                    index,
+                    value,
+                    distance,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Every joint's and inertial's `rpy` angle within `tol` of a multiple of π/2 made that
+/// multiple ([`snap_to_right_angle`]).
+pub fn snap_rpy(urdf: &mut urdf_rs::Robot, tol: f64) {
+    let origins = urdf
+        .joints
+        .iter_mut()
+        .map(|j| &mut j.origin)
+        .chain(urdf.links.iter_mut().map(|l| &mut l.inertial.origin));
+    for origin in origins {
+        for a in origin.rpy.0.iter_mut() {
+            *a = snap_to_right_angle(*a, tol);
+        }
+    }
+}
+
 /// The transform of a URDF `<origin xyz rpy>`: `[[Rz(y) Ry(p) Rx(r), xyz], [0, 1]]`.
 pub fn origin_transform(pose: &urdf_rs::Pose) -> Matrix4<f64> {
     let xyz = pose.xyz.0;

@@ -74,6 +74,12 @@ pub struct ModelArgs {
     /// those joints. Repeatable and comma-separated (`--armature j1=0.1,j2=0.05`).
     #[arg(long, value_name = "JOINT=VALUE[,JOINT=VALUE...]", value_parser = parse_armature, value_delimiter = ',')]
     pub armature: Vec<(String, f64)>,
+    /// URDF: read `rpy` angles within TOL (rad, at most 1e-2) of a multiple of π/2 as that
+    /// multiple (default 1e-9, the decimals of π/2 only). For files that write 1.5708 for
+    /// π/2: axis-aligned frames need far fewer operations (`stats` lists the angles it would
+    /// change and what it would save). The robot changes by up to TOL: opt in knowingly.
+    #[arg(long, value_name = "TOL")]
+    pub snap_angles: Option<f64>,
 }
 
 /// Arguments of `eval`.
@@ -151,6 +157,7 @@ impl ModelArgs {
             gravity: self.gravity.map(Into::into),
             floating_base: self.floating_base,
             armature: self.armature.clone(),
+            snap_angles: self.snap_angles,
         }
     }
 

@@ -82,6 +82,9 @@ fn command(args: &GenerateArgs) -> String {
     if !armature.is_empty() {
         words.extend(["--armature".into(), quote(&armature.join(","))]);
     }
+    if let Some(tol) = m.snap_angles {
+        words.push(format!("--snap-angles={tol:e}"));
+    }
     if let Some(eps) = args.friction_smoothing {
         words.push(format!("--friction-smoothing={eps}"));
     } else if args.friction {
@@ -116,7 +119,7 @@ fn quote(word: &str) -> String {
 
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
 pub fn stats(args: &ModelArgs) -> Result<(), String> {
-    let robot = args.load()?;
+    let (robot, name, bytes) = args.load_with_source()?;
     let options = Options {
         load: args.load_options(),
         ..Options::default()
@@ -131,5 +134,70 @@ pub fn stats(args: &ModelArgs) -> Result<(), String> {
     println!(
         "for comparison, recursive Newton-Euler (Featherstone's count, 93n-69 mul, 81n-66 add): {mul} mul, {add} add/sub"
     );
+    if let Some(text) = bytes.and_then(|b| String::from_utf8(b).ok()) {
+        near_right_angles(args, &text, &name, &stats)?;
+    }
+    Ok(())
+}
+
+/// The widest `--snap-angles` that `stats` reports on.
+const NEAR_RIGHT_ANGLE: f64 = 1e-4;
+
+/// For a URDF: the `rpy` angles within [`NEAR_RIGHT_ANGLE`] of a multiple of π/2 that the
+/// current tolerance leaves as written, and the operations snapping them would save.
+fn near_right_angles(
+    args: &ModelArgs,
+    text: &str,
+    name: &str,
+    stats: &dynamics_gen::stats::Stats,
+) -> Result<(), String> {
+    use dynamics_gen::dynamics_model::urdf;
+    let above = args.snap_angles.unwrap_or(urdf::origin::SNAP_TOL);
+    if above >= NEAR_RIGHT_ANGLE {
+        return Ok(());
+    }
+    // Not a URDF (or not one that parses): nothing to list.
+    let Ok(near) = urdf::near_right_angles(text, name, above, NEAR_RIGHT_ANGLE) else {
+        return Ok(());
+    };
+    if near.is_empty() {
+        return Ok(());
+    }
+    println!(
+        "{} rpy angles lie within {NEAR_RIGHT_ANGLE:e} rad of a multiple of pi/2 but are used as written (tolerance {above:e}):",
+        near.len()
+    );
+    const AXES: [&str; 3] = ["roll", "pitch", "yaw"];
+    for a in &near {
+        println!(
+            "  {} origin {} = {} ({:.1e} rad from a multiple of pi/2)",
+            a.element, AXES[a.index], a.value, a.distance
+        );
+    }
+    // The largest distance rounded up to one significant digit.
+    let widest = near.iter().map(|a| a.distance).fold(0.0, f64::max);
+    let exponent = widest.log10().floor() as i32;
+    let tol_text = match (widest / 10f64.powi(exponent)).ceil() as i32 {
+        10 => format!("1e{}", exponent + 1),
+        m => format!("{m}e{exponent}"),
+    };
+    let tol: f64 = tol_text.parse().map_err(|e| format!("{e}"))?;
+    let mut load = args.load_options();
+    load.snap_angles = Some(tol);
+    let snapped = dynamics_gen::dynamics_model::load::from_reader(text.as_bytes(), name, &load)
+        .map_err(|e| e.to_string())?;
+    dynamics_gen::check_robot(&snapped).map_err(|e| e.to_string())?;
+    let options = Options {
+        load,
+        ..Options::default()
+    };
+    let after = robot_stats(&snapped, &options).map_err(|e| e.to_string())?;
+    println!("with --snap-angles {tol_text} (the robot changes by up to that angle), mul + add/sub per function:");
+    for (b, a) in stats.functions.iter().zip(&after.functions) {
+        let (before, now) = (b.ops.mul + b.ops.add_sub, a.ops.mul + a.ops.add_sub);
+        if before != now {
+            println!("  {:<36} {before:>8} -> {now:>8}", b.name);
+        }
+    }
     Ok(())
 }
