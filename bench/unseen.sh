@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Arms the tests never saw, against Pinocchio, back to back on this machine:
+#   - the xArm7 (UFactory; example-robot-data 6.0.0), general geometry: its URDF writes 1.5708
+#     for pi/2 (3.7e-6 rad off), so its joint frames are not axis-aligned;
+#   - the same file with --snap-angles 4e-6 (its 1.5708s read as pi/2; a different robot by
+#     up to 4e-6 rad);
+#   - Baxter's left arm (Rethink; example-robot-data), shoulder to wrist, 7 joints, axis-aligned.
+# Pinocchio 4.1.0's C++ benchmark (bench/pinocchio_bench.cpp, -O3 -march=native, 1,024 random
+# states) on the files as written, then our generated code (bench/unseen/, compiled with
+# -C target-cpu=native; NATIVE=0 for the default target), then the ratios.
+#   bash bench/unseen.sh
+set -euo pipefail
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/.." && pwd)
+CACHE=${XDG_CACHE_HOME:-$HOME/.cache}/dynamics-gen-bench
+VENV=$CACHE/venv
+WORK=$CACHE/unseen
+mkdir -p "$WORK" "$CACHE/models" "$HERE/unseen/src/generated"
+
+# 1. The venv and Pinocchio's benchmark binary, as bench/run.sh builds them; example-robot-data.
+SKIP_CARGO=1 ROBOTS=ur5 CALLS=1000 REPS=1 bash "$HERE/run.sh" >/dev/null
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check -r "$HERE/requirements-unseen.txt"
+ERD=$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix/share/example-robot-data/robots
+cp "$ERD/xarm_description/urdf/xarm7.urdf" "$WORK/xarm7.urdf"
+# Baxter's left arm: the joints from the base to `left_wrist`, the links they connect
+# (visuals and collisions dropped; the mesh paths are not needed).
+"$VENV/bin/python" - "$ERD/baxter_description/urdf/baxter.urdf" "$WORK/baxter_left_arm.urdf" <<'PY'
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+by_child = {j.find("child").get("link"): j for j in root.findall("joint")}
+chain, link = [], "left_wrist"
+while link in by_child:
+    chain.append(by_child[link])
+    link = by_child[link].find("parent").get("link")
+links = {link} | {j.find("child").get("link") for j in chain}
+arm = ET.Element("robot", {"name": "baxter_left_arm"})
+for l in root.findall("link"):
+    if l.get("name") in links:
+        for tag in ("visual", "collision"):
+            for v in l.findall(tag):
+                l.remove(v)
+        arm.append(l)
+for j in reversed(chain):
+    arm.append(j)
+ET.ElementTree(arm).write(sys.argv[2])
+PY
+
+# 2. Generated code.
+F=inverse_dynamics,mass_matrix,gravity,forward_dynamics,inverse_dynamics_derivatives,forward_dynamics_with_derivatives,mass_matrix_inverse,gravity_derivative
+OUT=$HERE/unseen/src/generated
+(cd "$ROOT" && cargo build -q --release -p dynamics-gen)
+GEN=$ROOT/target/release/dynamics-gen
+"$GEN" generate "$WORK/xarm7.urdf" --no-runtime-trait --functions $F --name Xarm7 -o "$OUT/xarm7.rs" 2>/dev/null
+"$GEN" generate "$WORK/xarm7.urdf" --snap-angles 4e-6 --no-runtime-trait --functions $F --name Xarm7Snapped -o "$OUT/xarm7_snapped.rs" 2>/dev/null
+"$GEN" generate "$WORK/baxter_left_arm.urdf" --no-runtime-trait --functions $F --name BaxterLeftArm -o "$OUT/baxter_left_arm.rs" 2>/dev/null
+{
+  for m in xarm7 xarm7_snapped baxter_left_arm; do
+    echo "mod $m { include!(concat!(env!(\"CARGO_MANIFEST_DIR\"), \"/src/generated/$m.rs\")); }"
+  done
+} > "$OUT/arms.rs"
+
+# 3. Pinocchio, then ours, back to back.
+for r in xarm7 baxter_left_arm; do
+  "$VENV/bin/python" -c 'import sys, pinocchio as pin
+pin.buildModelFromUrdf(sys.argv[1]).saveToBinary(sys.argv[2])' "$WORK/$r.urdf" "$CACHE/models/$r.bin"
+done
+echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0"
+"$CACHE/pinocchio_bench" --calls 20000 --reps 5 xarm7="$CACHE/models/xarm7.bin" \
+  baxter_left_arm="$CACHE/models/baxter_left_arm.bin" | tee "$WORK/pinocchio.txt"
+if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
+echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'"
+(cd "$HERE/unseen" && cargo build -q --release && ./target/release/unseen-arms-bench) | tee "$WORK/ours.txt"
+
+# 4. Side by side (xarm7_snapped against Pinocchio on the file as written).
+"$VENV/bin/python" - "$WORK/pinocchio.txt" "$WORK/ours.txt" <<'PY'
+import sys
+algo = {"inverse_dynamics": "rnea", "mass_matrix": "crba", "gravity": "gravity", "forward_dynamics": "aba",
+        "inverse_dynamics_derivatives": "rnea_derivatives", "forward_dynamics_with_derivatives": "aba_derivatives",
+        "mass_matrix_inverse": "minverse", "gravity_derivative": "gravity_derivatives"}
+pin = {}
+for line in open(sys.argv[1]):
+    robot, _nv, a, med, _mn = line.split()
+    pin[(robot, a)] = float(med)
+print(f"\n{'robot':<16} {'ours':<34} {'ours_ns':>8} {'pinocchio':<19} {'pin_ns':>8} {'ratio':>6}")
+for line in open(sys.argv[2]):
+    robot, f, ns = line.split()
+    p = pin.get((robot.replace("_snapped", ""), algo[f]))
+    print(f"{robot:<16} {f:<34} {float(ns):8.1f} {algo[f]:<19} {p:8.1f} {p / float(ns):5.1f}x")
+PY
