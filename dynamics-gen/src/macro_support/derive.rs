@@ -24,6 +24,31 @@ pub struct Attr {
     pub options: Options,
 }
 
+/// The constant expression after `=` (`1e-5`, `PI / 4`, `-0.3`) as a number, or `None` with the
+/// error accumulated on its tokens: [`number::evaluate`]'s, or `bad(x)`'s when it says what
+/// is wrong with the value.
+fn number_value(
+    value: syn::parse::ParseStream<'_>,
+    errors: &mut Errors,
+    bad: impl Fn(f64) -> Option<String>,
+) -> syn::Result<Option<f64>> {
+    let expr: syn::Expr = value.parse()?;
+    let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
+    Ok(match number::evaluate(&tokens) {
+        Ok(x) => match bad(x) {
+            None => Some(x),
+            Some(problem) => {
+                errors.at(&expr, problem);
+                None
+            }
+        },
+        Err(e) => {
+            errors.push(e);
+            None
+        }
+    })
+}
+
 /// Reads every `#[dynamics(..)]` attribute of `input`; errors are accumulated.
 pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
     let mut attr = Attr {
@@ -118,11 +143,8 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                         let Some(joint) = inner.path.get_ident().map(ToString::to_string) else {
                             return Err(inner.error("expected `JOINT = VALUE`"));
                         };
-                        let expr: syn::Expr = inner.value()?.parse()?;
-                        let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
-                        match number::evaluate(&tokens) {
-                            Ok(x) => attr.options.load.lock.push((joint, x)),
-                            Err(e) => errors.push(e),
+                        if let Some(x) = number_value(inner.value()?, errors, |_| None)? {
+                            attr.options.load.lock.push((joint, x));
                         }
                         Ok(())
                     })?;
@@ -132,17 +154,11 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                         let Some(joint) = inner.path.get_ident().map(ToString::to_string) else {
                             return Err(inner.error("expected `JOINT = VALUE` (G²·I_rotor in kg·m²)"));
                         };
-                        let expr: syn::Expr = inner.value()?.parse()?;
-                        let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
-                        match number::evaluate(&tokens) {
-                            Ok(x) if x.is_finite() && x >= 0.0 => {
-                                attr.options.load.armature.push((joint, x));
-                            }
-                            Ok(x) => errors.at(
-                                &expr,
-                                format!("the armature of `{joint}` must be finite and ≥ 0, found {x}: give G²·I_rotor in kg·m² (kg for a prismatic joint)"),
-                            ),
-                            Err(e) => errors.push(e),
+                        let bad = |x: f64| {
+                            (!(x.is_finite() && x >= 0.0)).then(|| format!("the armature of `{joint}` must be finite and ≥ 0, found {x}: give G²·I_rotor in kg·m² (kg for a prismatic joint)"))
+                        };
+                        if let Some(x) = number_value(inner.value()?, errors, bad)? {
+                            attr.options.load.armature.push((joint, x));
                         }
                         Ok(())
                     })?;
@@ -153,32 +169,21 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                     }
                 }
                 "friction_smoothing" => {
-                    let expr: syn::Expr = meta.value()?.parse()?;
-                    let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
-                    match number::evaluate(&tokens) {
-                        Ok(x) if x.is_finite() && x > 0.0 => {
-                            attr.options.friction = Some(crate::options::Friction::Smooth(x));
-                        }
-                        Ok(x) => errors.at(
-                            &expr,
-                            format!("`friction_smoothing` must be > 0 (rad/s or m/s), found {x}"),
-                        ),
-                        Err(e) => errors.push(e),
+                    let bad = |x: f64| {
+                        (!(x.is_finite() && x > 0.0))
+                            .then(|| format!("`friction_smoothing` must be > 0 (rad/s or m/s), found {x}"))
+                    };
+                    if let Some(x) = number_value(meta.value()?, errors, bad)? {
+                        attr.options.friction = Some(crate::options::Friction::Smooth(x));
                     }
                 }
                 "snap_angles" => {
-                    let expr: syn::Expr = meta.value()?.parse()?;
-                    let tokens: Vec<TokenTree> = expr.to_token_stream().into_iter().collect();
                     let max = dynamics_model::load::MAX_SNAP_ANGLES;
-                    match number::evaluate(&tokens) {
-                        Ok(x) if (0.0..=max).contains(&x) => {
-                            attr.options.load.snap_angles = Some(x);
-                        }
-                        Ok(x) => errors.at(
-                            &expr,
-                            format!("`snap_angles` must be between 0 and {max:e} rad, found {x}: the largest distance from a multiple of π/2 to read as exact, e.g. 1e-5 for files that write 1.5708"),
-                        ),
-                        Err(e) => errors.push(e),
+                    let bad = |x: f64| {
+                        (!(0.0..=max).contains(&x)).then(|| format!("`snap_angles` must be between 0 and {max:e} rad, found {x}: the largest distance from a multiple of π/2 to read as exact, e.g. 1e-5 for files that write 1.5708"))
+                    };
+                    if let Some(x) = number_value(meta.value()?, errors, bad)? {
+                        attr.options.load.snap_angles = Some(x);
                     }
                 }
                 "method" => {
