@@ -232,7 +232,16 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         function::mul_add_helper(options.scalar)
     };
-    let sin_cos_fn = trig::sin_cos_helper(options.scalar, options.no_std);
+    // Only revolute joints (mimic ones included) bring sines and cosines.
+    let sin_cos_fn = if robot
+        .joints
+        .iter()
+        .any(|j| j.kind == dynamics_model::JointKind::Revolute)
+    {
+        trig::sin_cos_helper(options.scalar, options.no_std)
+    } else {
+        quote!()
+    };
     let impl_block = quote! {
         #allow
         #[rustfmt::skip]
@@ -762,11 +771,14 @@ fn select_functions(
     robot: &Robot,
     options: &Options,
 ) -> Result<TokenStream, Error> {
+    // Without a selection every function stays, and with them every helper they call: no
+    // parse (it costs seconds on a large tree).
+    let Some(selected) = &options.functions else {
+        return Ok(impl_block);
+    };
     let mut item: syn::ItemImpl = syn::parse2(impl_block)
         .map_err(|e| Error::Internal(format!("generated impl does not parse: {e}")))?;
-    if let Some(selected) = &options.functions {
-        retain_selected(&mut item, selected, robot, options)?;
-    }
+    retain_selected(&mut item, selected, robot, options)?;
     finish_helpers(&mut item);
     Ok(quote!(#item))
 }
