@@ -9,6 +9,7 @@ use std::path::PathBuf;
 
 include!("src/tree_spec.rs");
 
+#[derive(Clone)]
 struct Case {
     module: String,
     spec: String,
@@ -29,6 +30,25 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
     "tree_205_f64",
     "mimic_302_f64",
     "mimic_304_f32",
+    "lagrangian_shipped_rand7",
+    "lagrangian_random_106_f32",
+    "lagrangian_tree_208_f64",
+    "lagrangian_actuated_401",
+];
+
+/// The cases generated a second time by the Lagrangian route (`Method::Lagrangian`), as
+/// modules `lagrangian_<case>`: chains, a floating tree, mimic joints, armature and friction,
+/// f64 and f32, std and no_std. Every comparison test runs on them as on the others.
+const LAGRANGIAN: &[&str] = &[
+    "shipped_ur5",
+    "shipped_pendulum_f32_no_std",
+    "shipped_rand7",
+    "random_104_f32",
+    "random_106_f32",
+    "tree_207_f64",
+    "tree_208_f64",
+    "mimic_301_f64",
+    "actuated_401",
 ];
 
 /// The random trees with armature and friction (in the dynamics) compiled as Rust: (seed,
@@ -246,6 +266,17 @@ fn main() {
         });
     }
 
+    for module in LAGRANGIAN {
+        let case = cases
+            .iter()
+            .find(|c| c.module == *module)
+            .unwrap_or_else(|| panic!("no case {module}"));
+        let case = Case {
+            module: format!("lagrangian_{module}"),
+            ..case.clone()
+        };
+        cases.push(case);
+    }
     let mut registry = String::new();
     let mut list = String::new();
     let mut std_list = String::new();
@@ -272,6 +303,11 @@ fn main() {
             no_std: case.no_std,
             friction: case.friction,
             functions,
+            method: if case.module.starts_with("lagrangian_") {
+                dynamics_gen::Method::Lagrangian
+            } else {
+                dynamics_gen::Method::NewtonEuler
+            },
             ..Default::default()
         };
         let code = dynamics_gen::generate_file(&case.robot, &options, &case.spec)

@@ -143,6 +143,14 @@ impl Builder {
         self
     }
 
+    /// How the dynamics are derived: [`crate::Method::NewtonEuler`] (the default) or
+    /// [`crate::Method::Lagrangian`] (the Euler–Lagrange equations of `K − P` by symbolic
+    /// differentiation). The generated functions and their numbers are the same.
+    pub fn method(mut self, method: crate::Method) -> Self {
+        self.options.method = method;
+        self
+    }
+
     /// Include the joints' friction (`b q̇ + μ sgn(q̇)` from the robot file) in
     /// `inverse_dynamics`, `forward_dynamics`, their `_with_tip` forms and
     /// `constrained_forward_dynamics`. Off by default (URDF damping values are often

@@ -22,4 +22,4 @@ pub use check::check_robot;
 pub use dynamics_model;
 pub use emit::{generate_file, generate_impl, Generated, Provenance};
 pub use error::Error;
-pub use options::{Options, Scalar};
+pub use options::{Method, Options, Scalar};

@@ -1,5 +1,6 @@
 //! Options of the generator, shared by the Builder, the CLI and the macros.
 
+pub use crate::expand::Method;
 use dynamics_model::LoadOptions;
 
 /// The scalar type of the generated code.
@@ -58,6 +59,9 @@ pub struct Options {
     /// `None` (default): it does not (URDF `<dynamics>` values are often placeholders, and
     /// Pinocchio's `rnea` ignores them too). The `friction` function exists either way.
     pub friction: Option<Friction>,
+    /// How the dynamics are derived: Newton–Euler (default) or the Lagrangian
+    /// ([`Method::Lagrangian`]); the generated API is the same.
+    pub method: Method,
 }
 
 /// The friction model of the generated `friction(q̇)`: viscous damping `b q̇` plus Coulomb
@@ -120,6 +124,7 @@ impl Default for Options {
             load: LoadOptions::default(),
             functions: None,
             friction: None,
+            method: Method::NewtonEuler,
         }
     }
 }

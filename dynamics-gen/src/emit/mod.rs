@@ -83,7 +83,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         .as_deref()
         .map(path_tokens)
         .transpose()?;
-    let dynamics = expand::expand(&robot);
+    let dynamics = expand::expand_method(&robot, options.method);
     let (n_usize, nq_usize, nv_usize) = (dynamics.dof, dynamics.nq, dynamics.nv);
     let n = proc_macro2::Literal::usize_unsuffixed(n_usize);
     let nq = proc_macro2::Literal::usize_unsuffixed(nq_usize);
@@ -194,7 +194,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         " Gravity: ({}, {}, {}) m/s² in the base frame {{0}}, folded into the code.",
         robot.gravity[0], robot.gravity[1], robot.gravity[2]
     );
+    let lagrangian = dynamics.method == expand::Method::Lagrangian;
     let forward_doc = match dynamics.forward_route {
+        _ if lagrangian => " Method: the mass matrix and the bias `c + g` from the Lagrangian (see `mass_matrix`), then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per coordinate).",
         ForwardRoute::Ldlt if robot.has_mimic() => " Method: the mass matrix `M = Jᵀ M_joints J` of the independent coordinates by the composite-rigid-body algorithm, the bias `c + g` by Newton–Euler, then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per coordinate). The articulated-body algorithm does not apply: it assumes one coordinate per joint, and mimic joints share theirs.",
         ForwardRoute::Ldlt => " Method: the mass matrix by the composite-rigid-body algorithm, the bias `c + g` by Newton–Euler, then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per joint). Chosen over the articulated-body algorithm because it needs fewer operations for this robot.",
         ForwardRoute::Aba => " Method: Featherstone's articulated-body algorithm, unrolled (one division per joint). Chosen over CRBA + LDLᵀ because it needs fewer operations for this robot.",
@@ -224,6 +226,21 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #[doc = ""]
             #[doc = #text]
         }
+    };
+    let [mass_doc, coriolis_doc, gravity_doc_method, inverse_doc] = if lagrangian {
+        [
+            " Method: the Lagrangian route (Modern Robotics §8.1). `M = ∂²K/∂q̇²` of the kinetic energy `K = ½ Σ_i V_iᵀ G_i V_i` (`V_i` the body twist of link i), by symbolic differentiation; the robot's constants folded in.",
+            " Method: the Lagrangian route, `c = Ṁ q̇ − ∂K/∂q`, which is the Christoffel form `c_i = Σ_jk Γ_ijk q̇_j q̇_k` of `M` contracted with `q̇` (on a floating base, plus the Euler–Poincaré term `−[ad_ν_b]ᵀ ∂K/∂ν_b` of the base's body twist).",
+            " Method: the Lagrangian route, `g = ∂P/∂q` of the potential energy `P = −Σ_i m_i gᵀ p_i`.",
+            " Method: the Lagrangian route, `τ = M q̈ + c + g` assembled from the Euler–Lagrange equations of `L = K − P` (see `mass_matrix`, `coriolis`, `gravity`).",
+        ]
+    } else {
+        [
+            " Method: the composite-rigid-body algorithm.",
+            " Method: recursive Newton–Euler with `q̈ = 0` and no gravity.",
+            " Method: recursive Newton–Euler with `q̇ = q̈ = 0`.",
+            " Method: recursive Newton–Euler.",
+        ]
     };
     let limits = limit_consts(&robot, options.scalar, n_usize);
     let allow = allow_attrs();
@@ -259,7 +276,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #limits
 
             /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
-            /// by joint types), by the composite-rigid-body algorithm.
+            /// by joint types).
+            #[doc = ""]
+            #[doc = #mass_doc]
             #[doc = ""]
             #[doc = #units]
             #armature_doc
@@ -269,8 +288,10 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
                 #mass_matrix
             }
 
-            /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`:
-            /// Newton–Euler with `q̈ = 0` and no gravity. Quadratic in `qd`.
+            /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`.
+            /// Quadratic in `qd`.
+            #[doc = ""]
+            #[doc = #coriolis_doc]
             #[doc = ""]
             #[doc = #units]
             #[inline]
@@ -280,7 +301,9 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             }
 
             /// The gravity terms `g(q)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces that
-            /// hold the robot still (Newton–Euler with `q̇ = q̈ = 0`).
+            /// hold the robot still.
+            #[doc = ""]
+            #[doc = #gravity_doc_method]
             #[doc = ""]
             #[doc = #gravity_doc]
             #[doc = #units]
@@ -290,8 +313,10 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
                 #gravity
             }
 
-            /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)` (recursive Newton–Euler): the joint
-            /// forces (N·m for revolute, N for prismatic joints) that produce `qdd`.
+            /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces (N·m for
+            /// revolute, N for prismatic joints) that produce `qdd`.
+            #[doc = ""]
+            #[doc = #inverse_doc]
             #[doc = ""]
             #[doc = #gravity_doc]
             #[doc = #units]
@@ -603,7 +628,7 @@ fn dynamics_extras(
         }
 
         /// `(M(q), h(q, q̇))` with `h = c + g`, in one pass: what a controller needs each
-        /// tick (`τ = M q̈ + h`), sharing the trigonometry and the Newton–Euler forward pass
+        /// tick (`τ = M q̈ + h`), sharing the trigonometry and every common subexpression
         /// between the two.
         #[inline]
         #[must_use]

@@ -138,7 +138,7 @@ fn describe(generated: &Generated, options: &Options) -> String {
         },
         format!("gravity ({}, {}, {}) m/s²", g[0], g[1], g[2]),
         format!("nalgebra path {}", inert(&options.nalgebra_path)),
-        "method newton_euler".to_string(),
+        format!("method {}", options.method.as_str()),
         format!(
             "forward dynamics by {}",
             match generated.dynamics.forward_route {

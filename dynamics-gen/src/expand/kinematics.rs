@@ -234,6 +234,24 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
     }
 }
 
+/// `P(q)` of `robot` on the caller's graph, from the physical joints' positions `q` (after
+/// the mimic coupling) and `frames` (its joint frames with the mimic offsets), a floating
+/// base's pose from the q inputs: the same expression as [`Kinematics::potential_energy`].
+pub(crate) fn potential_energy_of(
+    g: &mut ExprGraph,
+    robot: &Robot,
+    frames: &JointFrames,
+    q: &[ExprId],
+) -> ExprId {
+    let poses = joint_poses(g, frames, q);
+    let base = robot.base.floating.then(|| {
+        let r = base_rotation(g);
+        let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
+        Pose { r, p }
+    });
+    potential_energy(g, robot, frames, &poses, base)
+}
+
 /// `P(q)`: see [`Kinematics::potential_energy`]. The first moments are summed in the base
 /// frame, `F = Σ_i (m_i p_i + R_i h_i)`, then moved to {0} once: `F⁰ = m p_b + R_b (F + h_b)`
 /// with `m` the total mass (a fixed base: `F⁰ = F`).

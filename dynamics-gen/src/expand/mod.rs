@@ -49,6 +49,7 @@ pub mod crba;
 pub mod derivatives;
 pub mod frames;
 pub mod kinematics;
+pub mod lagrangian;
 pub mod ldlt;
 pub mod mimic;
 pub mod rnea;
@@ -88,9 +89,46 @@ pub enum ForwardRoute {
     Aba,
 }
 
+/// How the dynamics are derived.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Recursive Newton–Euler for the forces, the composite-rigid-body algorithm for `M`,
+    /// and forward dynamics by LDLᵀ or the articulated-body algorithm (the default).
+    #[default]
+    NewtonEuler,
+    /// The Euler–Lagrange equations of `K − P`, by symbolic differentiation on the graph
+    /// ([`lagrangian`]); forward dynamics by LDLᵀ of that `M`.
+    Lagrangian,
+}
+
+impl Method {
+    /// `newton_euler` or `lagrangian`, as the options write it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::NewtonEuler => "newton_euler",
+            Method::Lagrangian => "lagrangian",
+        }
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "newton_euler" => Ok(Method::NewtonEuler),
+            "lagrangian" => Ok(Method::Lagrangian),
+            other => Err(format!(
+                "unknown method `{other}`: use `newton_euler` (the default) or `lagrangian`"
+            )),
+        }
+    }
+}
+
 /// The expanded dynamics of one robot: a graph and the outputs of each function.
 #[derive(Clone, Debug)]
 pub struct Dynamics {
+    /// How the dynamics were derived.
+    pub method: Method,
     /// The shared expression graph.
     pub graph: ExprGraph,
     /// k, the number of joint coordinates: the joints that mimic no other (n, the number of
@@ -145,8 +183,136 @@ pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
     expand_routes(robot, Some(route), true)
 }
 
+/// [`expand`] by the given method.
+pub fn expand_method(robot: &Robot, method: Method) -> Dynamics {
+    match method {
+        Method::NewtonEuler => expand(robot),
+        Method::Lagrangian => expand_lagrangian(robot, true),
+    }
+}
+
+/// The Lagrangian route ([`lagrangian`]): `M`, `c`, `g` from `K − P`, `τ = M ν̇ + c + g`, and
+/// forward dynamics by the cheaper LDLᵀ solve of that `M`; `prune` as in [`expand_routes`].
+pub(crate) fn expand_lagrangian(robot: &Robot, prune: bool) -> Dynamics {
+    let mut frames = frames::joint_frames(robot);
+    let coupling = mimic::Coupling::new(robot);
+    mimic::offsets(&mut frames, robot);
+    let k = robot.n_coordinates();
+    let floating = frames.base.is_some();
+    let (oq, ov) = if floating {
+        (base::NQ_BASE, base::NV_BASE)
+    } else {
+        (0, 0)
+    };
+    let nv = k + ov;
+    let mut g = ExprGraph::new();
+    let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, oq + i))).collect();
+    let xd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
+    let xdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
+    let tau: Vec<ExprId> = (0..nv).map(|i| g.input(input(TAU, i))).collect();
+    let t = lagrangian::lagrangian(&mut g, robot, &frames, &coupling, &x, &xd);
+    let bias: Vec<ExprId> = (0..nv)
+        .map(|i| g.add(t.coriolis[i], t.gravity[i]))
+        .collect();
+    // τ assembled as M ν̇ + c + g, or as the Euler–Lagrange equations' total time
+    // derivative: the fewer operations.
+    let assembled: Vec<ExprId> = (0..nv)
+        .map(|i| {
+            let m = g.dot(&t.mass_matrix[i * nv..(i + 1) * nv], &xdd);
+            g.add(m, bias[i])
+        })
+        .collect();
+    let inverse_dynamics = cheaper(&g, assembled, t.euler_lagrange);
+    let rhs: Vec<ExprId> = (0..nv).map(|i| g.sub(tau[i], bias[i])).collect();
+    let by_ldlt = ldlt::ldlt_solve(&mut g, &t.mass_matrix, &rhs);
+    let by_ltdl = ldlt::ltdl_solve(&mut g, &t.mass_matrix, &rhs);
+    let forward_dynamics = cheaper(&g, by_ldlt, by_ltdl);
+    let kinetic = [t.kinetic_energy];
+    let roots: [&[ExprId]; 7] = [
+        &t.mass_matrix,
+        &t.coriolis,
+        &t.gravity,
+        &inverse_dynamics,
+        &bias,
+        &forward_dynamics,
+        &kinetic,
+    ];
+    let (g, pruned) = if prune {
+        prune_checked(g, &roots)
+    } else {
+        (g, roots.iter().map(|r| r.to_vec()).collect())
+    };
+    let mut pruned = pruned.into_iter();
+    let mut next = || pruned.next().unwrap_or_default();
+    let outputs = Outputs {
+        mass_matrix: next(),
+        coriolis: next(),
+        gravity: next(),
+        inverse_dynamics: next(),
+        bias: next(),
+        forward_dynamics: next(),
+    };
+    let kinetic_energy = next().first().copied();
+    finish(
+        g,
+        Method::Lagrangian,
+        ForwardRoute::Ldlt,
+        (k, oq, nv),
+        outputs,
+        kinetic_energy,
+    )
+}
+
+/// The functions' outputs before [`finish`] adds the ones derived from them.
+struct Outputs {
+    mass_matrix: Vec<ExprId>,
+    coriolis: Vec<ExprId>,
+    gravity: Vec<ExprId>,
+    inverse_dynamics: Vec<ExprId>,
+    bias: Vec<ExprId>,
+    forward_dynamics: Vec<ExprId>,
+}
+
+/// The outputs derived from the mass matrix (`K`, unless given, `Ṁ`, `C`, the `Lᵀ D L`
+/// factor), and the whole [`Dynamics`]; `(k, oq, nv)` the sizes.
+fn finish(
+    mut g: ExprGraph,
+    method: Method,
+    forward_route: ForwardRoute,
+    (k, oq, nv): (usize, usize, usize),
+    o: Outputs,
+    kinetic_energy: Option<ExprId>,
+) -> Dynamics {
+    let floating = oq != 0;
+    let kinetic_energy =
+        kinetic_energy.unwrap_or_else(|| self::kinetic_energy(&mut g, &o.mass_matrix, nv));
+    let rate = base::configuration_rate(&mut g, floating, k);
+    let mass_matrix_dot = g.jvp(&o.mass_matrix, &rate);
+    let coriolis_matrix = coriolis_matrix(&mut g, &o.mass_matrix, &mass_matrix_dot, floating, k);
+    let (factor, inv_d) = ldlt::ltdl_factor(&mut g, &o.mass_matrix);
+    Dynamics {
+        method,
+        graph: g,
+        dof: k,
+        nq: k + oq,
+        nv,
+        mass_matrix: o.mass_matrix,
+        coriolis: o.coriolis,
+        gravity: o.gravity,
+        inverse_dynamics: o.inverse_dynamics,
+        forward_dynamics: o.forward_dynamics,
+        forward_route,
+        kinetic_energy,
+        mass_matrix_dot,
+        coriolis_matrix,
+        bias: o.bias,
+        mass_matrix_factor: factor,
+        mass_matrix_inv_d: inv_d,
+    }
+}
+
 /// The cheaper of two equal expansions (ties keep `a`).
-fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<ExprId> {
+pub(crate) fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<ExprId> {
     if g.op_counts(&b).total() < g.op_counts(&a).total() {
         b
     } else {
@@ -309,30 +475,15 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         ForwardRoute::Ldlt => by_ldlt,
         ForwardRoute::Aba => by_aba,
     };
-    let mut g = g;
-    let kinetic_energy = kinetic_energy(&mut g, &mass_matrix, nv);
-    let rate = base::configuration_rate(&mut g, floating, k);
-    let mass_matrix_dot = g.jvp(&mass_matrix, &rate);
-    let coriolis_matrix = coriolis_matrix(&mut g, &mass_matrix, &mass_matrix_dot, floating, k);
-    let (factor, inv_d) = ldlt::ltdl_factor(&mut g, &mass_matrix);
-    Dynamics {
-        graph: g,
-        dof: k,
-        nq: k + oq,
-        nv,
+    let outputs = Outputs {
         mass_matrix,
         coriolis,
         gravity,
         inverse_dynamics,
         forward_dynamics,
-        forward_route: route,
-        kinetic_energy,
-        mass_matrix_dot,
-        coriolis_matrix,
         bias,
-        mass_matrix_factor: factor,
-        mass_matrix_inv_d: inv_d,
-    }
+    };
+    finish(g, Method::NewtonEuler, route, (k, oq, nv), outputs, None)
 }
 
 /// The Coriolis matrix from the Christoffel symbols of the first kind of `m` (nv×nv
@@ -523,3 +674,6 @@ mod mimic_tests;
 
 #[cfg(test)]
 mod derivatives_tests;
+
+#[cfg(test)]
+mod lagrangian_tests;

@@ -43,8 +43,8 @@ pub struct Head {
 pub struct Inline {
     /// `#[attrs] VIS struct NAME;`.
     pub head: Head,
-    /// The robot as written and the span of every field.
-    pub robot: Result<Robot, syn::Error>,
+    /// The robot as written and the span of every field, and the `method` key.
+    pub robot: Result<(Robot, crate::Method), syn::Error>,
 }
 
 /// One item of a block: `key: value` or `keyword ARGS { … }`.
@@ -95,7 +95,7 @@ pub fn parse(input: TokenStream) -> syn::Result<Inline> {
 }
 
 /// Reads the items after the head and builds the robot.
-fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
+fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, crate::Method), syn::Error> {
     let mut errors = Errors::default();
     let mut spans = SpanMap::new(ident.to_token_stream());
     let items = parse_items(rest, &mut errors);
@@ -106,6 +106,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     let mut base: Option<Table> = None;
     let mut seen = Vec::new();
     let mut early = Vec::new();
+    let mut method = crate::Method::default();
     for item in items {
         match item {
             Item::Entry(e) => {
@@ -114,7 +115,19 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
                     continue;
                 };
                 spans.insert(Part::Robot, e.key.to_string(), e.tokens.clone());
-                if let Some(v) = to_toml(&e.value, ty, &mut errors) {
+                let v = to_toml(&e.value, ty, &mut errors);
+                if e.key == "method" {
+                    // A generation option, not part of the robot: `newton_euler` or `lagrangian`.
+                    if let Some(Toml::String(s)) = v {
+                        match s.parse() {
+                            Ok(m) => method = m,
+                            Err(_) => errors.at(
+                                &e.tokens,
+                                format!("unknown method `{s}`: the methods are `newton_euler` (the default) and `lagrangian`"),
+                            ),
+                        }
+                    }
+                } else if let Some(v) = v {
                     doc.insert(e.key.to_string(), v);
                 }
             }
@@ -193,7 +206,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<Robot, syn::Error> {
     if let Err(e) = robot.validate() {
         return Err(model_error(&spans, &e, &early, &text));
     }
-    Ok(robot)
+    Ok((robot, method))
 }
 
 /// The span map, and the base's name: the model names the base as a link without index,

@@ -18,6 +18,8 @@
 //!     pub struct Pendulum;           // the struct to define (any visibility, doc comments)
 //!     name: "pendulum",              // optional (default: the struct's name)
 //!     gravity: [0, 0, -10],          // optional, in {0}, m/s²; default [0, 0, -9.81]
+//!     method: lagrangian,            // optional: how the dynamics are derived, `newton_euler`
+//!                                    // (default) or `lagrangian`; the same API either way
 //!
 //!     // One block per movable joint, root to tip: `revolute` or `prismatic`, then its name.
 //!     joint revolute joint1 {
@@ -70,7 +72,8 @@
 //! tree's leaf links) and `lock(JOINT = VALUE, ..)`; `functions(NAME, ..)` (generate only
 //! these), `armature(JOINT = VALUE, ..)` (G²·I_rotor, kg·m²), `friction` (the joints'
 //! damping and Coulomb friction in inverse and forward dynamics) and
-//! `friction_smoothing = EPS` (the same with `μ tanh(q̇/ε)`); for URDF `snap_angles = TOL`
+//! `friction_smoothing = EPS` (the same with `μ tanh(q̇/ε)`), `method = "lagrangian"` (the
+//! Euler–Lagrange equations instead of Newton–Euler; the same API); for URDF `snap_angles = TOL`
 //! (`rpy` angles within TOL rad of a multiple of π/2 read as exact; at most 1e-2).
 //! The expansion holds an `include_bytes!` of the file, so the crate is rebuilt when the
 //! file changes. The environment variable [`derive::MANIFEST_DIR_OVERRIDE`] replaces
@@ -126,7 +129,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         #vis struct #ident;
     };
-    let robot = match parsed.robot {
+    let (robot, method) = match parsed.robot {
         Ok(r) => r,
         Err(e) => {
             let errors = e.into_compile_error();
@@ -135,6 +138,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
     };
     let options = Options {
         name: Some(ident.to_string()),
+        method,
         ..Options::default()
     };
     match crate::generate_impl(&robot, &options) {

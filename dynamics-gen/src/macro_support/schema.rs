@@ -43,6 +43,8 @@ pub const ROBOT_KEYS: &[(&str, Type)] = &[
     ("name", Type::Name),
     ("description", Type::Name),
     ("gravity", Type::Nums),
+    // Not a TOML key: how the dynamics are derived (`newton_euler` or `lagrangian`).
+    ("method", Type::Name),
 ];
 
 /// Keys of a joint (the `[[joint]]` table).

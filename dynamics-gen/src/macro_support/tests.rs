@@ -10,7 +10,7 @@ fn robots_dir() -> std::path::PathBuf {
 
 fn inline_robot(tokens: TokenStream) -> Robot {
     match inline::parse(tokens).map(|p| p.robot) {
-        Ok(Ok(r)) => r,
+        Ok(Ok((r, _))) => r,
         Ok(Err(e)) | Err(e) => panic!("{e}"),
     }
 }

@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use dynamics_gen::dynamics_model::{LoadOptions, Robot};
-use dynamics_gen::Scalar;
+use dynamics_gen::{Method, Scalar};
 use std::path::PathBuf;
 
 /// Generates unrolled, allocation-free Rust rigid-body dynamics for a robot arm, and
@@ -21,7 +21,7 @@ pub enum Command {
     /// Print (or write with -o) the generated Rust code of a robot.
     Generate(GenerateArgs),
     /// Print the operation counts and line counts of each generated function.
-    Stats(ModelArgs),
+    Stats(StatsArgs),
     /// Evaluate the reference dynamics on states read as JSON lines from stdin.
     ///
     /// Each input line is `{"q": [...], "qd": [...], "qdd": [...], "tau": [...], "f_tip": [...]}`
@@ -80,6 +80,17 @@ pub struct ModelArgs {
     /// change and what it would save). The robot changes by up to TOL: opt in knowingly.
     #[arg(long, value_name = "TOL")]
     pub snap_angles: Option<f64>,
+}
+
+/// Arguments of `stats`.
+#[derive(Debug, Args)]
+pub struct StatsArgs {
+    /// The robot and model options.
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// How the dynamics are derived, as for `generate`.
+    #[arg(long, default_value = "newton_euler", value_parser = parse_method)]
+    pub method: Method,
 }
 
 /// Arguments of `eval`.
@@ -142,6 +153,12 @@ pub struct GenerateArgs {
     /// (rad/s or m/s, > 0). Implies --friction.
     #[arg(long, value_name = "EPS", value_parser = parse_smoothing)]
     pub friction_smoothing: Option<f64>,
+    /// How the dynamics are derived: `newton_euler` (recursive Newton–Euler, the
+    /// composite-rigid-body and articulated-body algorithms) or `lagrangian` (the
+    /// Euler–Lagrange equations of K − P by symbolic differentiation). The same functions
+    /// and the same numbers either way; `stats --method` compares their costs.
+    #[arg(long, default_value = "newton_euler", value_parser = parse_method)]
+    pub method: Method,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -198,6 +215,10 @@ impl ModelArgs {
 }
 
 fn parse_scalar(s: &str) -> Result<Scalar, String> {
+    s.parse()
+}
+
+fn parse_method(s: &str) -> Result<Method, String> {
     s.parse()
 }
 

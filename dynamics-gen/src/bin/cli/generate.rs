@@ -1,9 +1,9 @@
 //! `generate` and `stats`.
 
-use super::args::{GenerateArgs, ModelArgs};
+use super::args::{GenerateArgs, ModelArgs, StatsArgs};
 use dynamics_gen::emit::provenance::portable;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
-use dynamics_gen::{Options, Provenance, Scalar};
+use dynamics_gen::{Method, Options, Provenance, Scalar};
 
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
@@ -23,6 +23,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         runtime_path: (!args.no_runtime_trait).then(|| args.runtime_path.clone()),
         load: args.model.load_options(),
         functions: (!args.functions.is_empty()).then(|| args.functions.clone()),
+        method: args.method,
     };
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
@@ -85,6 +86,9 @@ fn command(args: &GenerateArgs) -> String {
     if let Some(tol) = m.snap_angles {
         words.push(format!("--snap-angles={tol:e}"));
     }
+    if args.method != Method::NewtonEuler {
+        words.extend(["--method".into(), args.method.as_str().into()]);
+    }
     if let Some(eps) = args.friction_smoothing {
         words.push(format!("--friction-smoothing={eps}"));
     } else if args.friction {
@@ -118,16 +122,21 @@ fn quote(word: &str) -> String {
 }
 
 /// `dynamics-gen stats`: the table, and Featherstone's RNEA count for comparison.
-pub fn stats(args: &ModelArgs) -> Result<(), String> {
+pub fn stats(stats_args: &StatsArgs) -> Result<(), String> {
+    let args = &stats_args.model;
     let (robot, name, bytes) = args.load_with_source()?;
     let options = Options {
         load: args.load_options(),
+        method: stats_args.method,
         ..Options::default()
     };
     let stats = robot_stats(&robot, &options).map_err(|e| e.to_string())?;
     println!(
-        "robot `{}` ({} joints), struct `{}`; counts with shared subexpressions computed once",
-        robot.name, stats.dof, stats.struct_name
+        "robot `{}` ({} joints), struct `{}`, method {}; counts with shared subexpressions computed once",
+        robot.name,
+        stats.dof,
+        stats.struct_name,
+        options.method.as_str()
     );
     print!("{stats}");
     let (mul, add) = featherstone_rnea(stats.dof);
@@ -135,7 +144,7 @@ pub fn stats(args: &ModelArgs) -> Result<(), String> {
         "for comparison, recursive Newton-Euler (Featherstone's count, 93n-69 mul, 81n-66 add): {mul} mul, {add} add/sub"
     );
     if let Some(text) = bytes.and_then(|b| String::from_utf8(b).ok()) {
-        near_right_angles(args, &text, &name, &stats)?;
+        near_right_angles(args, options.method, &text, &name, &stats)?;
     }
     Ok(())
 }
@@ -147,6 +156,7 @@ const NEAR_RIGHT_ANGLE: f64 = 1e-4;
 /// current tolerance leaves as written, and the operations snapping them would save.
 fn near_right_angles(
     args: &ModelArgs,
+    method: Method,
     text: &str,
     name: &str,
     stats: &dynamics_gen::stats::Stats,
@@ -189,6 +199,7 @@ fn near_right_angles(
     dynamics_gen::check_robot(&snapped).map_err(|e| e.to_string())?;
     let options = Options {
         load,
+        method,
         ..Options::default()
     };
     let after = robot_stats(&snapped, &options).map_err(|e| e.to_string())?;
