@@ -53,6 +53,16 @@ pub enum Error {
         /// The operating system's message.
         message: String,
     },
+    /// `equations` cannot print this robot's dynamics in closed form.
+    #[error("equations of robot `{robot}`: {problem}; {fix}")]
+    Equations {
+        /// The robot's name.
+        robot: String,
+        /// What stands in the way.
+        problem: String,
+        /// The fix.
+        fix: String,
+    },
     /// A bug in the generator.
     #[error("internal error in dynamics-gen (please report): {0}")]
     Internal(String),

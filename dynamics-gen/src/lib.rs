@@ -9,6 +9,7 @@
 pub mod builder;
 pub mod check;
 pub mod emit;
+pub mod equations;
 pub mod error;
 pub mod expand;
 pub mod expr;

@@ -23,7 +23,7 @@ fn main() -> ExitCode {
         dynamics_gen::dynamics_model::shipped::NAMES.join(", ")
     );
     let mut command = Cli::command().after_help(shipped.clone());
-    for sub in ["generate", "stats", "eval", "joints"] {
+    for sub in ["generate", "stats", "equations", "eval", "joints"] {
         command = command.mut_subcommand(sub, |c| c.after_help(shipped.clone()));
     }
     let cli = match command
@@ -45,6 +45,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Generate(args) => cli::generate::run(&args),
         Command::Stats(args) => cli::generate::stats(&args),
+        Command::Equations(args) => cli::generate::equations(&args),
         Command::Eval(args) => cli::eval::run(&args),
         Command::Joints(args) => cli::joints::run(&args),
         Command::Robots => cli::joints::robots(),

@@ -62,7 +62,7 @@ pub struct Terms {
 
 /// The body twists `V_i` of every link in its joint frame, from the base's twist `v0` and
 /// the physical joint rates `qd`.
-fn link_twists(
+pub(crate) fn link_twists(
     g: &mut ExprGraph,
     motions: &[JointMotion<'_>],
     v0: Spatial,

@@ -22,6 +22,11 @@ pub enum Command {
     Generate(GenerateArgs),
     /// Print the operation counts and line counts of each generated function.
     Stats(StatsArgs),
+    /// Print the equations of motion in closed form: M(θ), c(θ, θ̇), C(θ, θ̇) and g(θ) as
+    /// polynomials in sin θ_i, cos θ_i, θ̇_i (θ_i for prismatic joints), from the Lagrangian,
+    /// with sin² + cos² = 1 applied and coefficients as exact short forms where they are one
+    /// (integers, simple fractions, √2, √3, √6, π multiples). Fixed-base robots.
+    Equations(EquationsArgs),
     /// Evaluate the reference dynamics on states read as JSON lines from stdin.
     ///
     /// Each input line is `{"q": [...], "qd": [...], "qdd": [...], "tau": [...], "f_tip": [...]}`
@@ -91,6 +96,26 @@ pub struct StatsArgs {
     /// How the dynamics are derived, as for `generate`.
     #[arg(long, default_value = "newton_euler", value_parser = parse_method)]
     pub method: Method,
+}
+
+/// Arguments of `equations`.
+#[derive(Debug, Args)]
+pub struct EquationsArgs {
+    /// The robot and model options.
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// `text` (Unicode), `latex` (a document with an align* per quantity) or `markdown`
+    /// (with $$ math $$, as GitHub renders it).
+    #[arg(long, default_value = "text", value_parser = parse_format)]
+    pub format: dynamics_gen::equations::Format,
+    /// Print the derivation first: the links' body twists V_i, K, P, L = K − P, ∂L/∂θ̇,
+    /// d/dt ∂L/∂θ̇, ∂L/∂θ and τ, as a textbook solution takes it.
+    #[arg(long)]
+    pub steps: bool,
+    /// Significant digits of the coefficients that have no short exact form (1 to 17; 17
+    /// prints every coefficient exactly as the f64 it is).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=17))]
+    pub digits: u8,
 }
 
 /// Arguments of `eval`.
@@ -219,6 +244,10 @@ fn parse_scalar(s: &str) -> Result<Scalar, String> {
 }
 
 fn parse_method(s: &str) -> Result<Method, String> {
+    s.parse()
+}
+
+fn parse_format(s: &str) -> Result<dynamics_gen::equations::Format, String> {
     s.parse()
 }
 

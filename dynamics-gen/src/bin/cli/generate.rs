@@ -1,6 +1,6 @@
 //! `generate` and `stats`.
 
-use super::args::{GenerateArgs, ModelArgs, StatsArgs};
+use super::args::{EquationsArgs, GenerateArgs, ModelArgs, StatsArgs};
 use dynamics_gen::emit::provenance::portable;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
 use dynamics_gen::{Method, Options, Provenance, Scalar};
@@ -38,10 +38,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
     match &args.output {
         Some(path) => std::fs::write(path, code)
             .map_err(|e| format!("{}: cannot write the generated file: {e}", path.display())),
-        None => {
-            print!("{code}");
-            Ok(())
-        }
+        None => super::print(&code),
     }
 }
 
@@ -147,6 +144,18 @@ pub fn stats(stats_args: &StatsArgs) -> Result<(), String> {
         near_right_angles(args, options.method, &text, &name, &stats)?;
     }
     Ok(())
+}
+
+/// `dynamics-gen equations`: the closed forms, to stdout.
+pub fn equations(args: &EquationsArgs) -> Result<(), String> {
+    let robot = args.model.load()?;
+    let options = dynamics_gen::equations::EquationOptions {
+        format: args.format,
+        steps: args.steps,
+        digits: usize::from(args.digits),
+    };
+    let text = dynamics_gen::equations::equations(&robot, &options).map_err(|e| e.to_string())?;
+    super::print(&text)
 }
 
 /// The widest `--snap-angles` that `stats` reports on.

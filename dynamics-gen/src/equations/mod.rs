@@ -1,0 +1,571 @@
+//! Closed-form equations of motion: `M(θ)`, `c(θ, θ̇)`, `C(θ, θ̇)` and `g(θ)` as polynomials in
+//! `sin θ_i`, `cos θ_i`, `θ̇_i` (and `θ_i` of prismatic joints), from the Lagrangian route's
+//! expressions ([`crate::expand::Method::Lagrangian`]), with `sin² + cos² = 1` applied
+//! ([`poly`]) and coefficients as exact short forms where they are one ([`number`]).
+//!
+//! With `steps`, the derivation first, in the order a textbook solution takes it (Modern
+//! Robotics §8.1, Exercise 8.4): the body twists `V_i` of the links in their frames {i} (the
+//! frames of `M_{0i}`, where the file's `G_i` are given), `K = ½ Σ V_iᵀ G_i V_i`,
+//! `P = −Σ m_i gᵀ p_i`, `L = K − P`, `∂L/∂θ̇`, `d/dt ∂L/∂θ̇`, `∂L/∂θ` and
+//! `τ = d/dt ∂L/∂θ̇ − ∂L/∂θ`.
+//!
+//! The terms of each entry are in a deterministic order: by degree in the rates (θ̇, θ̈), then
+//! by total degree (both descending), then by variable. Terms whose coefficients are below
+//! 1e-11 of the entry's largest are rounding leftovers of cancellations and are dropped.
+//! Floating bases (whose orientation is a quaternion) are not printed.
+
+pub mod number;
+pub mod poly;
+
+use crate::error::Error;
+use crate::expand::spatial::{JointMotion, Spatial};
+use crate::expand::{self, base, frames, input, kinematics, lagrangian, mimic, Q, QD, QDD};
+use crate::expr::{ExprGraph, ExprId, Input};
+use dynamics_model::lie::{adjoint, trans_inv};
+use dynamics_model::Robot;
+use number::magnitude;
+use poly::{Poly, Var};
+use std::fmt::Write as _;
+
+/// The output format.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    /// Plain Unicode text (`sin θ2`, `θ̇1²`, `√2`).
+    #[default]
+    Text,
+    /// LaTeX: an `align*` environment per section.
+    Latex,
+    /// Markdown with LaTeX math (`$$ … $$`), as GitHub renders it.
+    Markdown,
+}
+
+impl std::str::FromStr for Format {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "text" => Ok(Format::Text),
+            "latex" => Ok(Format::Latex),
+            "markdown" => Ok(Format::Markdown),
+            other => Err(format!(
+                "unknown format `{other}`: use `text`, `latex` or `markdown`"
+            )),
+        }
+    }
+}
+
+/// What to print.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EquationOptions {
+    /// The format.
+    pub format: Format,
+    /// The derivation's steps before the results.
+    pub steps: bool,
+    /// Significant digits of coefficients that have no short exact form (17: exact).
+    pub digits: usize,
+}
+
+impl Default for EquationOptions {
+    fn default() -> Self {
+        Self {
+            format: Format::Text,
+            steps: false,
+            digits: 6,
+        }
+    }
+}
+
+/// One named quantity: a scalar, a vector or a matrix of polynomials.
+#[derive(Clone, Debug)]
+pub struct Quantity {
+    /// Its symbol in text (`M`, `c`, `∂L/∂θ̇`).
+    pub text: &'static str,
+    /// Its symbol in LaTeX.
+    pub latex: &'static str,
+    /// What it is, one line.
+    pub title: String,
+    /// `(rows, cols)`: `(1, 1)` a scalar, `(n, 1)` a vector.
+    pub shape: (usize, usize),
+    /// Whether only the entries on and above the diagonal are printed (symmetric).
+    pub symmetric: bool,
+    /// `Some(i)`: a 6-vector printed on one line as `V{i} = (ω, v)` (a link's twist).
+    pub tuple: Option<usize>,
+    /// The entries, row-major.
+    pub entries: Vec<Poly>,
+}
+
+/// Terms below this fraction of an entry's largest coefficient are dropped as rounding
+/// leftovers.
+const CLEAN: f64 = 1e-11;
+
+/// The closed-form quantities of `robot`: with `steps`, the derivation's, then `M`, `c`, `C`
+/// and `g`.
+pub fn quantities(robot: &Robot, steps: bool) -> Result<Vec<Quantity>, Error> {
+    let refuse = |problem: &str, fix: &str| Error::Equations {
+        robot: robot.name.clone(),
+        problem: problem.into(),
+        fix: fix.into(),
+    };
+    if robot.base.floating {
+        return Err(refuse(
+            "a floating base's orientation is a quaternion, which has no closed form in sines and cosines",
+            "print the equations of the robot with a fixed base (without --floating-base or a floating root joint)",
+        ));
+    }
+    if robot.dof() == 0 {
+        return Err(refuse(
+            "it has no movable joint",
+            "give a robot with at least one revolute or prismatic joint",
+        ));
+    }
+    let var = |x: Input| -> Option<Var> {
+        let i = x.index;
+        match x.group {
+            Q => Some(Var::Q(i)),
+            QD => Some(Var::Qd(i)),
+            QDD => Some(Var::Qdd(i)),
+            _ => None,
+        }
+    };
+    let to_polys = |g: &ExprGraph, roots: &[ExprId]| -> Result<Vec<Poly>, Error> {
+        poly::from_graph(g, roots, &var)
+            .map(|ps| ps.into_iter().map(|p| p.cleaned(CLEAN)).collect())
+            .map_err(|e| {
+                refuse(
+                    &e.to_string(),
+                    "the closed form exists for revolute and prismatic joints and mimic multipliers ±1",
+                )
+            })
+    };
+    let mut out = Vec::new();
+    let n = robot.n_coordinates();
+    if steps {
+        let s = Steps::new(robot);
+        let g = &s.graph;
+        let twists: Vec<ExprId> = s
+            .twists
+            .iter()
+            .flat_map(|v| [v.ang, v.lin].concat())
+            .collect();
+        let twist_polys = to_polys(g, &twists)?;
+        for (i, chunk) in twist_polys.chunks(6).enumerate() {
+            out.push(Quantity {
+                text: "V",
+                latex: "V",
+                title: format!(
+                    "the body twist V{} = (ω, v) of link {} in its frame {{{}}} (the frame of M{}{}: where its G is given)",
+                    i + 1,
+                    crate::emit::text::inert(&robot.links[i].name),
+                    i + 1,
+                    i,
+                    i + 1
+                ),
+                shape: (6, 1),
+                symmetric: false,
+                tuple: Some(i + 1),
+                entries: chunk.to_vec(),
+            });
+        }
+        let scalars = to_polys(g, &[s.kinetic, s.potential, s.lagrangian])?;
+        for (p, (text, latex, title)) in scalars.into_iter().zip([
+            ("K", "K", "the kinetic energy K = ½ Σ_i V_iᵀ G_i V_i"),
+            ("P", "P", "the potential energy P = −Σ_i m_i gᵀ p_i"),
+            ("L", "L", "the Lagrangian L = K − P"),
+        ]) {
+            out.push(Quantity {
+                text,
+                latex,
+                title: title.into(),
+                shape: (1, 1),
+                symmetric: false,
+                tuple: None,
+                entries: vec![p],
+            });
+        }
+        for (roots, text, latex, title) in [
+            (
+                &s.dl_dqd,
+                "∂L/∂θ̇",
+                "\\frac{\\partial L}{\\partial \\dot\\theta}",
+                "the generalised momentum ∂L/∂θ̇",
+            ),
+            (
+                &s.ddt,
+                "d/dt ∂L/∂θ̇",
+                "\\frac{d}{dt}\\frac{\\partial L}{\\partial \\dot\\theta}",
+                "its time derivative d/dt ∂L/∂θ̇",
+            ),
+            (
+                &s.dl_dq,
+                "∂L/∂θ",
+                "\\frac{\\partial L}{\\partial \\theta}",
+                "∂L/∂θ",
+            ),
+            (
+                &s.tau,
+                "τ",
+                "\\tau",
+                "the equations of motion τ = d/dt ∂L/∂θ̇ − ∂L/∂θ",
+            ),
+        ] {
+            out.push(Quantity {
+                text,
+                latex,
+                title: title.into(),
+                shape: (n, 1),
+                symmetric: false,
+                tuple: None,
+                entries: to_polys(g, roots)?,
+            });
+        }
+    }
+    let d = expand::expand_method(robot, expand::Method::Lagrangian);
+    let g = &d.graph;
+    out.push(Quantity {
+        text: "M",
+        latex: "M",
+        title: "the mass matrix M(θ) = ∂²K/∂θ̇² (symmetric: the entries on and above the diagonal)"
+            .into(),
+        shape: (n, n),
+        symmetric: true,
+        tuple: None,
+        entries: to_polys(g, &d.mass_matrix)?,
+    });
+    out.push(Quantity {
+        text: "c",
+        latex: "c",
+        title: "the Coriolis and centrifugal terms c(θ, θ̇) = Ṁ θ̇ − ∂K/∂θ".into(),
+        shape: (n, 1),
+        symmetric: false,
+        tuple: None,
+        entries: to_polys(g, &d.coriolis)?,
+    });
+    out.push(Quantity {
+        text: "C",
+        latex: "C",
+        title: "the Coriolis matrix C(θ, θ̇) of the Christoffel symbols, C θ̇ = c".into(),
+        shape: (n, n),
+        symmetric: false,
+        tuple: None,
+        entries: to_polys(g, &d.coriolis_matrix)?,
+    });
+    out.push(Quantity {
+        text: "g",
+        latex: "g",
+        title: "the gravity terms g(θ) = ∂P/∂θ".into(),
+        shape: (n, 1),
+        symmetric: false,
+        tuple: None,
+        entries: to_polys(g, &d.gravity)?,
+    });
+    Ok(out)
+}
+
+/// The derivation's expressions on one graph.
+struct Steps {
+    graph: ExprGraph,
+    twists: Vec<Spatial>,
+    kinetic: ExprId,
+    potential: ExprId,
+    lagrangian: ExprId,
+    dl_dqd: Vec<ExprId>,
+    ddt: Vec<ExprId>,
+    dl_dq: Vec<ExprId>,
+    tau: Vec<ExprId>,
+}
+
+impl Steps {
+    fn new(robot: &Robot) -> Self {
+        let mut fr = frames::joint_frames(robot);
+        let coupling = mimic::Coupling::new(robot);
+        mimic::offsets(&mut fr, robot);
+        let k = robot.n_coordinates();
+        let mut g = ExprGraph::new();
+        let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, i))).collect();
+        let xd: Vec<ExprId> = (0..k).map(|i| g.input(input(QD, i))).collect();
+        let q = coupling.positions(&mut g, &x);
+        let qd = coupling.rates(&mut g, &xd);
+        let motions: Vec<JointMotion<'_>> = expand::joint_motions(&mut g, &fr, &q);
+        let zero = g.zero();
+        let v0 = Spatial {
+            ang: [zero; 3],
+            lin: [zero; 3],
+        };
+        let in_joint_frames = lagrangian::link_twists(&mut g, &motions, v0, &qd);
+        // To the link frames {i}: V_i = [Ad_{T_{i,J_i}}] V_{J_i}, T_{i,J_i} = M_{0i}⁻¹ T_{0,J_i}.
+        let homes = robot.home_poses();
+        let mut twists = Vec::with_capacity(in_joint_frames.len());
+        let mut terms = Vec::new();
+        for (i, v) in in_joint_frames.iter().enumerate() {
+            let t = trans_inv(&homes[i + 1]) * fr.homes[i];
+            let a = adjoint(&t);
+            let vj = [v.ang, v.lin].concat();
+            let vi: Vec<ExprId> = (0..6)
+                .map(|r| {
+                    let row: Vec<ExprId> = (0..6)
+                        .filter(|&c| a[(r, c)] != 0.0)
+                        .map(|c| {
+                            let k = g.constant(a[(r, c)]);
+                            g.mul(k, vj[c])
+                        })
+                        .collect();
+                    g.sum(&row)
+                })
+                .collect();
+            let gi = robot.links[i].inertia.0;
+            for r in 0..6 {
+                for c in 0..6 {
+                    if gi[(r, c)] != 0.0 {
+                        let k = g.constant(0.5 * gi[(r, c)]);
+                        let p = g.mul(vi[r], vi[c]);
+                        terms.push(g.mul(k, p));
+                    }
+                }
+            }
+            twists.push(Spatial {
+                ang: [vi[0], vi[1], vi[2]],
+                lin: [vi[3], vi[4], vi[5]],
+            });
+        }
+        for (i, f) in fr.joints.iter().enumerate() {
+            if f.armature != 0.0 {
+                let sq = g.mul(qd[i], qd[i]);
+                let c = g.constant(0.5 * f.armature);
+                terms.push(g.mul(c, sq));
+            }
+        }
+        let kinetic = g.sum(&terms);
+        let potential = kinematics::potential_energy_of(&mut g, robot, &fr, &q);
+        let lagrangian = g.sub(kinetic, potential);
+        let wrt_qd: Vec<Input> = (0..k).map(|j| input(QD, j)).collect();
+        let wrt_q: Vec<Input> = (0..k).map(|j| input(Q, j)).collect();
+        let dl_dqd = g.grad(lagrangian, &wrt_qd);
+        let dl_dq = g.grad(lagrangian, &wrt_q);
+        let mut rate = base::configuration_rate(&mut g, false, k);
+        rate.extend((0..k).map(|j| (input(QD, j), g.input(input(QDD, j)))));
+        let ddt = g.jvp(&dl_dqd, &rate);
+        let tau = (0..k).map(|i| g.sub(ddt[i], dl_dq[i])).collect();
+        Self {
+            graph: g,
+            twists,
+            kinetic,
+            potential,
+            lagrangian,
+            dl_dqd,
+            ddt,
+            dl_dq,
+            tau,
+        }
+    }
+}
+
+/// The equations of `robot`, printed.
+pub fn equations(robot: &Robot, options: &EquationOptions) -> Result<String, Error> {
+    let qs = quantities(robot, options.steps)?;
+    Ok(render(robot, &qs, options))
+}
+
+/// The order of terms: rate degree, then total degree (descending), then the monomial.
+fn term_order(a: &poly::Monomial, b: &poly::Monomial) -> std::cmp::Ordering {
+    let rate = |m: &poly::Monomial| -> u32 {
+        m.iter()
+            .filter(|(v, _)| matches!(v, Var::Qd(_) | Var::Qdd(_)))
+            .map(|(_, p)| p)
+            .sum()
+    };
+    let total = |m: &poly::Monomial| -> u32 { m.iter().map(|(_, p)| p).sum() };
+    rate(b)
+        .cmp(&rate(a))
+        .then(total(b).cmp(&total(a)))
+        .then(a.cmp(b))
+}
+
+const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+
+fn superscript(p: u32) -> String {
+    p.to_string()
+        .chars()
+        .map(|c| SUPERSCRIPTS[c.to_digit(10).unwrap_or(0) as usize])
+        .collect()
+}
+
+/// One factor `v^p` in text: `θ̇2²`, `sin²θ2`, `θ3`.
+fn factor_text(v: Var, p: u32) -> String {
+    let pow = if p == 1 {
+        String::new()
+    } else {
+        superscript(p)
+    };
+    match v {
+        Var::Qd(i) => format!("θ̇{}{pow}", i + 1),
+        Var::Qdd(i) => format!("θ̈{}{pow}", i + 1),
+        Var::Q(i) => format!("θ{}{pow}", i + 1),
+        Var::Sin(i) if p == 1 => format!("sin θ{}", i + 1),
+        Var::Cos(i) if p == 1 => format!("cos θ{}", i + 1),
+        Var::Sin(i) => format!("sin{pow}θ{}", i + 1),
+        Var::Cos(i) => format!("cos{pow}θ{}", i + 1),
+    }
+}
+
+/// One factor in LaTeX.
+fn factor_latex(v: Var, p: u32) -> String {
+    let pow = if p == 1 {
+        String::new()
+    } else {
+        format!("^{{{p}}}")
+    };
+    match v {
+        Var::Qd(i) => format!("\\dot\\theta_{{{}}}{pow}", i + 1),
+        Var::Qdd(i) => format!("\\ddot\\theta_{{{}}}{pow}", i + 1),
+        Var::Q(i) => format!("\\theta_{{{}}}{pow}", i + 1),
+        Var::Sin(i) => format!("\\sin{pow}\\theta_{{{}}}", i + 1),
+        Var::Cos(i) => format!("\\cos{pow}\\theta_{{{}}}", i + 1),
+    }
+}
+
+/// A polynomial in text or LaTeX.
+pub fn poly_string(p: &Poly, latex: bool, digits: usize) -> String {
+    if p.terms.is_empty() {
+        return "0".into();
+    }
+    let mut terms: Vec<(&poly::Monomial, f64)> = p.terms.iter().map(|(m, &c)| (m, c)).collect();
+    terms.sort_by(|a, b| term_order(a.0, b.0));
+    let mut out = String::new();
+    for (k, (m, c)) in terms.into_iter().enumerate() {
+        let minus = c < 0.0;
+        match (k, minus, latex) {
+            (0, true, false) => out.push('−'),
+            (0, true, true) => out.push('-'),
+            (0, false, _) => {}
+            (_, true, false) => out.push_str(" − "),
+            (_, true, true) => out.push_str(" - "),
+            (_, false, _) => out.push_str(" + "),
+        }
+        let mag = magnitude(c, digits);
+        let mut parts: Vec<String> = Vec::new();
+        if !mag.is_one() || m.is_empty() {
+            parts.push(if latex { mag.latex() } else { mag.text() });
+        }
+        for &(v, pw) in m.iter() {
+            parts.push(if latex {
+                factor_latex(v, pw)
+            } else {
+                factor_text(v, pw)
+            });
+        }
+        out.push_str(&parts.join(if latex { " \\, " } else { " " }));
+    }
+    out
+}
+
+/// The indices of entry `(r, c)` of a quantity of shape `(rows, cols)`, 1-based, joined
+/// without a separator when every index is one digit.
+fn indices((rows, cols): (usize, usize), r: usize, c: usize) -> String {
+    let wide = rows >= 10 || cols >= 10;
+    match (rows, cols) {
+        (1, 1) => String::new(),
+        (_, 1) => format!("{}", r + 1),
+        _ if wide => format!("{},{}", r + 1, c + 1),
+        _ => format!("{}{}", r + 1, c + 1),
+    }
+}
+
+fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
+    let names: Vec<String> = robot
+        .joints
+        .iter()
+        .filter(|j| j.mimic.is_none())
+        .map(|j| crate::emit::text::inert(&j.name))
+        .collect();
+    let legend: Vec<String> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| format!("θ{} = {n}", i + 1))
+        .collect();
+    let g = robot.gravity;
+    let header = format!(
+        "Equations of motion of {} (Lagrangian route), τ = M(θ) θ̈ + c(θ, θ̇) + g(θ); {}; gravity ({}, {}, {}) m/s²; SI units (rad, m, kg, s).",
+        crate::emit::text::inert(&robot.name),
+        legend.join(", "),
+        g[0],
+        g[1],
+        g[2]
+    );
+    let mut out = String::new();
+    let latex = options.format != Format::Text;
+    match options.format {
+        Format::Text => writeln!(out, "{header}").ok(),
+        Format::Markdown => writeln!(out, "# Equations of motion\n\n{header}").ok(),
+        Format::Latex => writeln!(
+            out,
+            "% {header}\n\\documentclass{{article}}\n\\usepackage{{amsmath}}\n\\allowdisplaybreaks\n\\begin{{document}}"
+        )
+        .ok(),
+    };
+    for q in qs {
+        match options.format {
+            Format::Text => writeln!(out, "\n{}:", q.title).ok(),
+            Format::Markdown => writeln!(out, "\n## {}\n", q.title).ok(),
+            Format::Latex => writeln!(out, "\n% {}\n\\begin{{align*}}", q.title).ok(),
+        };
+        let (rows, cols) = q.shape;
+        let mut lines = Vec::new();
+        if let Some(i) = q.tuple {
+            let parts: Vec<String> = q
+                .entries
+                .iter()
+                .map(|p| poly_string(p, latex, options.digits))
+                .collect();
+            lines.push(if latex {
+                format!(
+                    "{}_{{{i}}} &= \\left( {} \\right)",
+                    q.latex,
+                    parts.join(",\\; ")
+                )
+            } else {
+                format!("  {}{i} = ({})", q.text, parts.join(", "))
+            });
+        }
+        for r in 0..rows {
+            for c in 0..cols {
+                if q.tuple.is_some() || (q.symmetric && c < r) {
+                    continue;
+                }
+                let idx = indices(q.shape, r, c);
+                let body = poly_string(&q.entries[r * cols + c], latex, options.digits);
+                let line = if latex {
+                    let sym = if idx.is_empty() {
+                        q.latex.to_string()
+                    } else {
+                        format!("{}_{{{idx}}}", q.latex)
+                    };
+                    format!("{sym} &= {body}")
+                } else {
+                    format!("  {}{idx} = {body}", q.text)
+                };
+                lines.push(line);
+            }
+        }
+        match options.format {
+            Format::Text => {
+                for l in lines {
+                    writeln!(out, "{l}").ok();
+                }
+            }
+            Format::Markdown => {
+                writeln!(
+                    out,
+                    "$$\n\\begin{{aligned}}\n{}\n\\end{{aligned}}\n$$",
+                    lines.join(" \\\\\n")
+                )
+                .ok();
+            }
+            Format::Latex => {
+                writeln!(out, "{}\n\\end{{align*}}", lines.join(" \\\\\n")).ok();
+            }
+        }
+    }
+    if options.format == Format::Latex {
+        writeln!(out, "\n\\end{{document}}").ok();
+    }
+    out
+}
