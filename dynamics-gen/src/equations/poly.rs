@@ -104,8 +104,17 @@ impl Poly {
         if c == 0.0 {
             return;
         }
-        let e = self.terms.entry(m).or_insert(0.0);
-        *e += c;
+        match self.terms.entry(m) {
+            std::collections::btree_map::Entry::Vacant(v) => {
+                v.insert(c);
+            }
+            std::collections::btree_map::Entry::Occupied(mut o) => {
+                *o.get_mut() += c;
+                if *o.get() == 0.0 {
+                    o.remove();
+                }
+            }
+        }
     }
 
     /// `self · other`, reduced with `cos² = 1 − sin²`.
@@ -214,40 +223,55 @@ pub fn from_graph(
 ) -> Result<Vec<Poly>, PolyError> {
     let live = graph.live(roots);
     let n = roots.iter().map(|r| r.index() + 1).max().unwrap_or(0);
+    // Uses left of each node, so its polynomial is dropped after its last user.
+    let mut uses = vec![0u32; n];
+    for i in (0..n).filter(|&i| live[i]) {
+        for o in graph.node(ExprId(i as u32)).operands() {
+            uses[o.index()] += 1;
+        }
+    }
+    for r in roots {
+        uses[r.index()] += 1;
+    }
+    let empty = Poly::default();
     let mut polys: Vec<Option<Poly>> = vec![None; n];
     // Nodes are topologically ordered: operands first.
     for i in 0..n {
         if !live[i] {
             continue;
         }
-        let get = |polys: &[Option<Poly>], id: ExprId| -> Poly {
-            polys[id.index()].clone().unwrap_or_default()
-        };
-        let p = match *graph.node(ExprId(i as u32)) {
+        let node = *graph.node(ExprId(i as u32));
+        let get = |id: ExprId| polys[id.index()].as_ref().unwrap_or(&empty);
+        let p = match node {
             Node::Const(c) => Poly::constant(c.value()),
             Node::Input(x) => match var(x) {
                 Some(v) => Poly::var(v),
                 None => Poly::default(),
             },
-            Node::Neg(a) => get(&polys, a).scaled(-1.0),
-            Node::Add(a, b) => get(&polys, a).combine(1.0, &get(&polys, b), 1.0),
-            Node::Sub(a, b) => get(&polys, a).combine(1.0, &get(&polys, b), -1.0),
-            Node::Mul(a, b) => get(&polys, a).mul(&get(&polys, b))?,
+            Node::Neg(a) => get(a).scaled(-1.0),
+            Node::Add(a, b) => get(a).combine(1.0, get(b), 1.0),
+            Node::Sub(a, b) => get(a).combine(1.0, get(b), -1.0),
+            Node::Mul(a, b) => get(a).mul(get(b))?,
             Node::Div(..) => return Err(PolyError::NotPolynomial("division")),
             Node::Sqrt(..) => return Err(PolyError::NotPolynomial("square root")),
             Node::Sin(a) | Node::Cos(a) => {
-                let is_sin = matches!(graph.node(ExprId(i as u32)), Node::Sin(_));
-                let (j, s, b) = get(&polys, a).as_angle().ok_or(PolyError::Argument)?;
+                let (j, s, b) = get(a).as_angle().ok_or(PolyError::Argument)?;
                 // sin(sθ + b) = s sin θ cos b + cos θ sin b; cos(sθ + b) = cos θ cos b − s sin θ sin b.
                 let (sin, cos) = (Poly::var(Var::Sin(j)), Poly::var(Var::Cos(j)));
                 let (sb, cb) = exact_sin_cos(b);
-                if is_sin {
+                if matches!(node, Node::Sin(_)) {
                     sin.combine(s * cb, &cos, sb)
                 } else {
                     cos.combine(cb, &sin, -s * sb)
                 }
             }
         };
+        for o in node.operands() {
+            uses[o.index()] -= 1;
+            if uses[o.index()] == 0 {
+                polys[o.index()] = None;
+            }
+        }
         polys[i] = Some(p);
     }
     Ok(roots

@@ -116,6 +116,10 @@ pub struct EquationsArgs {
     /// prints every coefficient exactly as the f64 it is).
     #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=17))]
     pub digits: u8,
+    /// Print only these results: a comma-separated list of M, c, C, g (default all four;
+    /// c is the vector, C the matrix).
+    #[arg(long, value_name = "M,c,C,g", default_value = "M,c,C,g", value_parser = parse_select)]
+    pub only: dynamics_gen::equations::Select,
 }
 
 /// Arguments of `eval`.
@@ -248,6 +252,10 @@ fn parse_method(s: &str) -> Result<Method, String> {
 }
 
 fn parse_format(s: &str) -> Result<dynamics_gen::equations::Format, String> {
+    s.parse()
+}
+
+fn parse_select(s: &str) -> Result<dynamics_gen::equations::Select, String> {
     s.parse()
 }
 

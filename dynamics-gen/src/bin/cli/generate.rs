@@ -153,6 +153,7 @@ pub fn equations(args: &EquationsArgs) -> Result<(), String> {
         format: args.format,
         steps: args.steps,
         digits: usize::from(args.digits),
+        select: args.only,
     };
     let text = dynamics_gen::equations::equations(&robot, &options).map_err(|e| e.to_string())?;
     super::print(&text)
