@@ -18,6 +18,11 @@ struct MrUr5;
 #[dynamics(file = "../robots/rand7.toml")]
 struct Rand7;
 
+/// The UR5 by the Lagrangian route.
+#[derive(Dynamics)]
+#[dynamics(file = "../robots/ur5.urdf", method = "lagrangian")]
+struct Ur5Lagrangian;
+
 #[derive(Dynamics)]
 #[dynamics(file = "../tests/data/robots/panda.urdf")]
 struct Panda;
@@ -26,6 +31,22 @@ dynamics_macros::robot! {
     /// robots/pendulum.toml, inline.
     pub struct Pendulum;
     gravity: [0.0, 0.0, -10.0],
+    joint revolute joint1 {
+        screw: [0, 0, 1, 0, 0, 0],
+        link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+    },
+    joint revolute joint2 {
+        screw: [1, 0, 0, 0, 0, 0],
+        link pendulum { home: { xyz: [0, 0, -1] }, mass: 2.0, inertia: [4, 4, 0, 0, 0, 0] },
+    },
+    end_effector bob { home: { xyz: [0, 0, 0] } },
+}
+
+dynamics_macros::robot! {
+    /// robots/pendulum.toml, inline, by the Lagrangian route.
+    pub struct PendulumLagrangian;
+    gravity: [0.0, 0.0, -10.0],
+    method: lagrangian,
     joint revolute joint1 {
         screw: [0, 0, 1, 0, 0, 0],
         link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
@@ -143,6 +164,18 @@ compare!(
 compare!(
     inline_pendulum_matches_reference,
     Pendulum,
+    "robots/pendulum.toml",
+    2
+);
+compare!(
+    lagrangian_ur5_matches_reference,
+    Ur5Lagrangian,
+    "robots/ur5.urdf",
+    6
+);
+compare!(
+    lagrangian_inline_pendulum_matches_reference,
+    PendulumLagrangian,
     "robots/pendulum.toml",
     2
 );

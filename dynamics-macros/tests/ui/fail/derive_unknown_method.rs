@@ -1,5 +1,5 @@
 #[derive(dynamics_macros::Dynamics)]
-#[dynamics(file = "robots/ur5.urdf", method = "lagrangian")]
+#[dynamics(file = "robots/ur5.urdf", method = "euler_lagrange")]
 pub struct Ur5;
 
 fn main() {}
