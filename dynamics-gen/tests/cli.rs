@@ -700,3 +700,57 @@ fn snap_angles_listed_by_stats_and_applied() {
     assert!(text(&out.stderr).contains("`snap_angles` applies to URDF files only"));
     std::fs::remove_file(&path).ok();
 }
+
+#[test]
+fn method_lagrangian_reaches_generate_and_stats() {
+    let out = run(&["generate", "pendulum", "--method", "lagrangian"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let code = text(&out.stdout);
+    assert!(code.contains("method lagrangian"), "header");
+    assert!(
+        code.contains("dynamics-gen generate pendulum --method lagrangian"),
+        "regenerate line"
+    );
+    assert!(code.contains("Method: the Lagrangian route"), "docs");
+    let ne = text(&run(&["generate", "pendulum"]).stdout);
+    assert!(ne.contains("method newton_euler") && !ne.contains("Lagrangian route"));
+    let out = run(&["stats", "ur5", "--method", "lagrangian"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("method lagrangian"));
+    let out = run(&["generate", "pendulum", "--method", "euler"]);
+    assert!(!out.status.success());
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("unknown method `euler`") && err.contains("lagrangian"),
+        "{err}"
+    );
+}
+
+#[test]
+fn equations_prints_the_pendulum_closed_forms() {
+    let out = run(&["equations", "pendulum"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let eq = text(&out.stdout);
+    for line in [
+        "  M11 = 6 sin²θ2 + 8",
+        "  M12 = 2 cos θ2",
+        "  M22 = 6",
+        "  c1 = 12 θ̇1 θ̇2 sin θ2 cos θ2 − 2 θ̇2² sin θ2",
+        "  c2 = −6 θ̇1² sin θ2 cos θ2",
+        "  g2 = 20 sin θ2",
+    ] {
+        assert!(eq.lines().any(|l| l == line), "missing {line:?} in\n{eq}");
+    }
+    let out = run(&["equations", "pendulum", "--format", "latex", "--only", "M"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let tex = text(&out.stdout);
+    assert!(tex.contains("\\begin{document}") && tex.contains("M_{12} &= 2 \\, \\cos\\theta_{2}"));
+    assert!(!tex.contains("g_{2}"), "--only M");
+    let solo = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/robots/trees/solo12.urdf"
+    );
+    let out = run(&["equations", solo, "--floating-base"]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("quaternion"));
+}
