@@ -38,7 +38,8 @@ fn main() -> ExitCode {
         }
         Err(e) => {
             // --help and --version.
-            print!("{}", e.render());
+            // A reader that stops early (`| head`) is no error.
+            let _ = cli::print(&e.render().to_string());
             return ExitCode::SUCCESS;
         }
     };

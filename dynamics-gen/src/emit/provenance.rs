@@ -142,6 +142,7 @@ fn describe(generated: &Generated, options: &Options) -> String {
         format!(
             "forward dynamics by {}",
             match generated.dynamics.forward_route {
+                _ if options.method == crate::Method::Lagrangian => "LDLᵀ of the Lagrangian's M",
                 ForwardRoute::Ldlt => "CRBA + LDLᵀ",
                 ForwardRoute::Aba => "the articulated-body algorithm",
             }

@@ -4,6 +4,7 @@ use super::args::{EquationsArgs, GenerateArgs, ModelArgs, StatsArgs};
 use dynamics_gen::emit::provenance::portable;
 use dynamics_gen::stats::{featherstone_rnea, robot_stats};
 use dynamics_gen::{Method, Options, Provenance, Scalar};
+use std::fmt::Write as _;
 
 /// `dynamics-gen generate`: the formatted code, to stdout or `-o FILE`.
 pub fn run(args: &GenerateArgs) -> Result<(), String> {
@@ -128,22 +129,23 @@ pub fn stats(stats_args: &StatsArgs) -> Result<(), String> {
         ..Options::default()
     };
     let stats = robot_stats(&robot, &options).map_err(|e| e.to_string())?;
-    println!(
+    let mut out = String::new();
+    writeln!(out,
         "robot `{}` ({} joints), struct `{}`, method {}; counts with shared subexpressions computed once",
         robot.name,
         stats.dof,
         stats.struct_name,
         options.method.as_str()
-    );
-    print!("{stats}");
+    ).ok();
+    write!(out, "{stats}").ok();
     let (mul, add) = featherstone_rnea(stats.dof);
-    println!(
+    writeln!(out,
         "for comparison, recursive Newton-Euler (Featherstone's count, 93n-69 mul, 81n-66 add): {mul} mul, {add} add/sub"
-    );
+    ).ok();
     if let Some(text) = bytes.and_then(|b| String::from_utf8(b).ok()) {
-        near_right_angles(args, options.method, &text, &name, &stats)?;
+        near_right_angles(&mut out, args, options.method, &text, &name, &stats)?;
     }
-    Ok(())
+    super::print(&out)
 }
 
 /// `dynamics-gen equations`: the closed forms, to stdout.
@@ -165,6 +167,7 @@ const NEAR_RIGHT_ANGLE: f64 = 1e-4;
 /// For a URDF: the `rpy` angles within [`NEAR_RIGHT_ANGLE`] of a multiple of π/2 that the
 /// current tolerance leaves as written, and the operations snapping them would save.
 fn near_right_angles(
+    out: &mut String,
     args: &ModelArgs,
     method: Method,
     text: &str,
@@ -183,16 +186,18 @@ fn near_right_angles(
     if near.is_empty() {
         return Ok(());
     }
-    println!(
+    writeln!(out,
         "{} rpy angles lie within {NEAR_RIGHT_ANGLE:e} rad of a multiple of pi/2 but are used as written (tolerance {above:e}):",
         near.len()
-    );
+    ).ok();
     const AXES: [&str; 3] = ["roll", "pitch", "yaw"];
     for a in &near {
-        println!(
+        writeln!(
+            out,
             "  {} origin {} = {} ({:.1e} rad from a multiple of pi/2)",
             a.element, AXES[a.index], a.value, a.distance
-        );
+        )
+        .ok();
     }
     // The largest distance rounded up to one significant digit.
     let widest = near.iter().map(|a| a.distance).fold(0.0, f64::max);
@@ -213,11 +218,11 @@ fn near_right_angles(
         ..Options::default()
     };
     let after = robot_stats(&snapped, &options).map_err(|e| e.to_string())?;
-    println!("with --snap-angles {tol_text} (the robot changes by up to that angle), mul + add/sub per function:");
+    writeln!(out, "with --snap-angles {tol_text} (the robot changes by up to that angle), mul + add/sub per function:").ok();
     for (b, a) in stats.functions.iter().zip(&after.functions) {
         let (before, now) = (b.ops.mul + b.ops.add_sub, a.ops.mul + a.ops.add_sub);
         if before != now {
-            println!("  {:<36} {before:>8} -> {now:>8}", b.name);
+            writeln!(out, "  {:<36} {before:>8} -> {now:>8}", b.name).ok();
         }
     }
     Ok(())

@@ -2,12 +2,14 @@
 
 use super::args::ModelArgs;
 use dynamics_gen::dynamics_model::{shipped, JointKind};
+use std::fmt::Write as _;
 
 /// `dynamics-gen joints`: one movable joint per line, in vector order (a floating base
 /// first; on a tree each joint says which link it hangs from), with its index in q (and in
 /// ν on a floating base). A mimic joint has no index: it says which joint it follows.
 pub fn run(args: &ModelArgs) -> Result<(), String> {
     let robot = args.load()?;
+    let mut out = String::new();
     let mut width = robot.joints.iter().map(|j| j.name.len()).max().unwrap_or(0);
     let couplings = robot.couplings();
     let index = |i: usize| -> String {
@@ -29,13 +31,13 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
         .unwrap_or(0);
     if robot.base.floating {
         width = width.max("(floating base)".len());
-        println!(
+        writeln!(out,
             "{:<width$}  {:<10}  {:<index_width$}  base link `{}`: q[0..7] = (p, quat x y z w), velocity[0..6] = (ω_b, v_b) in the base frame; the joints follow at q[7..], velocity[6..]",
             "(floating base)",
             "free",
             base_index,
             robot.base.name
-        );
+        ).ok();
     }
     let tree = !robot.is_serial();
     for (i, j) in robot.joints.iter().enumerate() {
@@ -71,15 +73,17 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             ),
             None => String::new(),
         };
-        println!(
+        writeln!(
+            out,
             "{:<width$}  {:<10}  {:<index_width$}  S = ({})  {limits}{parent}{follows}",
             j.name,
             kind,
             index(i),
             s.join(", ")
-        );
+        )
+        .ok();
     }
-    Ok(())
+    super::print(&out)
 }
 
 /// A note on stderr when the robot's joints have friction (URDF `<dynamics damping
@@ -103,8 +107,9 @@ pub fn ignored_notes(robot: &dynamics_gen::dynamics_model::Robot, included: bool
 
 /// `dynamics-gen robots`: the shipped robots.
 pub fn robots() -> Result<(), String> {
+    let mut out = String::new();
     for r in shipped::ROBOTS {
-        println!("{:<10} {}", r.name, r.file);
+        writeln!(out, "{:<10} {}", r.name, r.file).ok();
     }
-    Ok(())
+    super::print(&out)
 }
