@@ -10,8 +10,16 @@
 //! M    = ∂²K/∂ν²  = ∂p/∂ν
 //! c    = d/dt p |_{ν̇ = 0} − ∂K/∂q  = Ṁ ν − ∂K/∂q
 //! g    = ∂P/∂q
-//! τ    = M ν̇ + c + g
+//! τ    = M ν̇ + c + g  =  d/dt p − ∂K/∂q + ∂P/∂q
 //! ```
+//!
+//! `p` and `∂K/∂q` come from one reverse-mode sweep over `K` ([`ExprGraph::grad`]), `g` from
+//! one over `P`, so they cost a small multiple of `K` and `P` themselves (forward mode would
+//! cost that per coordinate). `M` is `∂p/∂ν` by forward mode over that gradient, or over
+//! forward-mode `∂K/∂ν_j` (which keeps the links' Jacobian columns apart): the fewer
+//! operations. `τ` is either assembled as `M ν̇ + c + g` or taken as the total time derivative
+//! along `(q̇, ν̇)` without forming `M ν̇` (`super::expand_lagrangian` keeps the one with
+//! fewer operations).
 //!
 //! `c` is the Christoffel form `c_i = Σ_jk Γ_ijk ν_j ν_k`, `Γ_ijk = ½ (∂M_ij/∂q_k + ∂M_ik/∂q_j
 //! − ∂M_jk/∂q_i)`, contracted with `ν` before differentiating: under the symmetric sum the
