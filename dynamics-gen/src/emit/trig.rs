@@ -13,7 +13,7 @@
 //!    transformations (Knuth's two-sum), so r = r_h + r_l carries about 100 (f64) or 60
 //!    (f32) correct bits even where x is close to a multiple of π/2 and r cancels.
 //! 2. **Polynomials** on |r_h| ≤ π/4 (z = r_h²): for f64, minimax polynomials through r¹³
-//!    (sin) and r¹⁴ (cos) whose relative errors there are below 0.04 ulp ([`SIN_F64`]); for
+//!    (sin) and r¹⁴ (cos) whose relative errors there are below 0.04 ulp (`SIN_F64`); for
 //!    f32, the Taylor series through r⁹ and r¹⁰ (below 0.05 ulp); cos as
 //!    w + ((1 − w) − z/2 + z² Q(z)) with w = 1 − z/2, which keeps the rounding error of w.
 //! 3. **Correction and quadrant**: sin r ≈ S + r_l C and cos r ≈ C − r_l S; then, by k mod 4,

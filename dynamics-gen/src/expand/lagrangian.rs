@@ -30,7 +30,7 @@
 //!
 //! The twists run in the joint frames of [`super::frames`], with their inertias as regrouped
 //! there: the regrouped masses lie on a joint's axis and move with either link, so `K` is
-//! unchanged. `P` is built from the file's inertias ([`super::kinematics::potential_energy_of`]).
+//! unchanged. `P` is built from the file's inertias (`kinematics::potential_energy_of`).
 //!
 //! Mimic joints: `K` and `P` are functions of the independent coordinates (the followers'
 //! angles and rates are `m x + o` and `m ẋ`), so their derivatives are the projected

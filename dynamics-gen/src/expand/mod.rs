@@ -158,7 +158,7 @@ pub struct Dynamics {
     pub mass_matrix_dot: Vec<ExprId>,
     /// `C(q, ν)` with `C ν = c` and `Ṁ − 2C` skew-symmetric: the Christoffel symbols of
     /// `mass_matrix` (and the base's Euler–Poincaré term), nv×nv row-major; see
-    /// [`coriolis_matrix`].
+    /// `coriolis_matrix`.
     pub coriolis_matrix: Vec<ExprId>,
     /// `h(q, ν) = c(q, ν) + g(q)`: Newton–Euler with `ν̇ = 0` (the bias of forward dynamics).
     pub bias: Vec<ExprId>,
