@@ -274,52 +274,50 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
         }
     }
     let d = expand::expand_method(robot, expand::Method::Lagrangian);
-    let g = &d.graph;
-    if select.mass_matrix {
-        out.push(Quantity {
-            text: "M",
-            latex: "M",
-            title:
-                "the mass matrix M(θ) = ∂²K/∂θ̇² (symmetric: the entries on and above the diagonal)"
-                    .into(),
-            shape: (n, n),
-            symmetric: true,
-            tuple: None,
-            entries: to_polys(g, &d.mass_matrix)?,
-        });
-    }
-    if select.coriolis {
-        out.push(Quantity {
-            text: "c",
-            latex: "c",
-            title: "the Coriolis and centrifugal terms c(θ, θ̇) = Ṁ θ̇ − ∂K/∂θ".into(),
-            shape: (n, 1),
-            symmetric: false,
-            tuple: None,
-            entries: to_polys(g, &d.coriolis)?,
-        });
-    }
-    if select.coriolis_matrix {
-        out.push(Quantity {
-            text: "C",
-            latex: "C",
-            title: "the Coriolis matrix C(θ, θ̇) of the Christoffel symbols, C θ̇ = c".into(),
-            shape: (n, n),
-            symmetric: false,
-            tuple: None,
-            entries: to_polys(g, &d.coriolis_matrix)?,
-        });
-    }
-    if select.gravity {
-        out.push(Quantity {
-            text: "g",
-            latex: "g",
-            title: "the gravity terms g(θ) = ∂P/∂θ".into(),
-            shape: (n, 1),
-            symmetric: false,
-            tuple: None,
-            entries: to_polys(g, &d.gravity)?,
-        });
+    // (printed, symbol, title, shape, expressions).
+    type Printed<'a> = (bool, &'static str, &'a str, (usize, usize), &'a [ExprId]);
+    let results: [Printed<'_>; 4] = [
+        (
+            select.mass_matrix,
+            "M",
+            "the mass matrix M(θ) = ∂²K/∂θ̇² (symmetric: the entries on and above the diagonal)",
+            (n, n),
+            &d.mass_matrix,
+        ),
+        (
+            select.coriolis,
+            "c",
+            "the Coriolis and centrifugal terms c(θ, θ̇) = Ṁ θ̇ − ∂K/∂θ",
+            (n, 1),
+            &d.coriolis,
+        ),
+        (
+            select.coriolis_matrix,
+            "C",
+            "the Coriolis matrix C(θ, θ̇) of the Christoffel symbols, C θ̇ = c",
+            (n, n),
+            &d.coriolis_matrix,
+        ),
+        (
+            select.gravity,
+            "g",
+            "the gravity terms g(θ) = ∂P/∂θ",
+            (n, 1),
+            &d.gravity,
+        ),
+    ];
+    for (wanted, symbol, title, shape, roots) in results {
+        if wanted {
+            out.push(Quantity {
+                text: symbol,
+                latex: symbol,
+                title: title.into(),
+                shape,
+                symmetric: symbol == "M",
+                tuple: None,
+                entries: to_polys(&d.graph, roots)?,
+            });
+        }
     }
     Ok(out)
 }

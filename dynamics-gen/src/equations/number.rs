@@ -101,51 +101,38 @@ impl Magnitude {
 
     /// Plain text: `12`, `3/4`, `√2`, `3√2/4`, `2π`, `0.123457`, `1.5e-7`.
     pub fn text(&self) -> String {
-        match self {
-            Magnitude::Decimal(s) => s.clone(),
-            Magnitude::Exact { n, d, factor } => {
-                let f = match factor {
-                    Factor::One => String::new(),
-                    Factor::Sqrt(r) => format!("√{r}"),
-                    Factor::Pi => "π".into(),
-                };
-                let num = match (n, factor) {
-                    (1, Factor::One) => "1".to_string(),
-                    (1, _) => f,
-                    _ => format!("{n}{f}"),
-                };
-                if *d == 1 {
-                    num
-                } else {
-                    format!("{num}/{d}")
-                }
-            }
-        }
+        self.render(false)
     }
 
     /// LaTeX: `12`, `\frac{3}{4}`, `\sqrt{2}`, `\frac{3\sqrt{2}}{4}`, `2\pi`,
     /// `1.5 \times 10^{-7}`.
     pub fn latex(&self) -> String {
+        self.render(true)
+    }
+
+    fn render(&self, latex: bool) -> String {
         match self {
             Magnitude::Decimal(s) => match s.split_once('e') {
-                Some((m, e)) => format!("{m} \\times 10^{{{e}}}"),
-                None => s.clone(),
+                Some((m, e)) if latex => format!("{m} \\times 10^{{{e}}}"),
+                _ => s.clone(),
             },
             Magnitude::Exact { n, d, factor } => {
-                let f = match factor {
-                    Factor::One => String::new(),
-                    Factor::Sqrt(r) => format!("\\sqrt{{{r}}}"),
-                    Factor::Pi => "\\pi".into(),
+                let f = match (factor, latex) {
+                    (Factor::One, _) => String::new(),
+                    (Factor::Sqrt(r), false) => format!("√{r}"),
+                    (Factor::Sqrt(r), true) => format!("\\sqrt{{{r}}}"),
+                    (Factor::Pi, false) => "π".into(),
+                    (Factor::Pi, true) => "\\pi".into(),
                 };
                 let num = match (n, factor) {
                     (1, Factor::One) => "1".to_string(),
                     (1, _) => f,
                     _ => format!("{n}{f}"),
                 };
-                if *d == 1 {
-                    num
-                } else {
-                    format!("\\frac{{{num}}}{{{d}}}")
+                match (d, latex) {
+                    (1, _) => num,
+                    (_, false) => format!("{num}/{d}"),
+                    (_, true) => format!("\\frac{{{num}}}{{{d}}}"),
                 }
             }
         }

@@ -183,6 +183,59 @@ pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
     expand_routes(robot, Some(route), true)
 }
 
+/// What both routes start from: the joint frames (mimic offsets applied), the coupling,
+/// the sizes, and a graph with the inputs `x` (the k coordinates, after a floating base's
+/// seven q entries), `ν`, `ν̇`, `τ`.
+struct Inputs {
+    frames: frames::JointFrames,
+    coupling: mimic::Coupling,
+    /// k coordinates (n physical joints when none mimics another).
+    k: usize,
+    /// Offsets of the joints in q and in ν: after the base's position and quaternion, and
+    /// after its twist.
+    oq: usize,
+    ov: usize,
+    nv: usize,
+    g: ExprGraph,
+    x: Vec<ExprId>,
+    xd: Vec<ExprId>,
+    xdd: Vec<ExprId>,
+    tau: Vec<ExprId>,
+}
+
+impl Inputs {
+    fn new(robot: &Robot) -> Self {
+        let mut frames = frames::joint_frames(robot);
+        let coupling = mimic::Coupling::new(robot);
+        mimic::offsets(&mut frames, robot);
+        let k = robot.n_coordinates();
+        let (oq, ov) = if frames.base.is_some() {
+            (base::NQ_BASE, base::NV_BASE)
+        } else {
+            (0, 0)
+        };
+        let nv = k + ov;
+        let mut g = ExprGraph::new();
+        let x = (0..k).map(|i| g.input(input(Q, oq + i))).collect();
+        let xd = (0..nv).map(|i| g.input(input(QD, i))).collect();
+        let xdd = (0..nv).map(|i| g.input(input(QDD, i))).collect();
+        let tau = (0..nv).map(|i| g.input(input(TAU, i))).collect();
+        Self {
+            frames,
+            coupling,
+            k,
+            oq,
+            ov,
+            nv,
+            g,
+            x,
+            xd,
+            xdd,
+            tau,
+        }
+    }
+}
+
 /// [`expand`] by the given method.
 pub fn expand_method(robot: &Robot, method: Method) -> Dynamics {
     match method {
@@ -194,22 +247,19 @@ pub fn expand_method(robot: &Robot, method: Method) -> Dynamics {
 /// The Lagrangian route ([`lagrangian`]): `M`, `c`, `g` from `K − P`, `τ = M ν̇ + c + g`, and
 /// forward dynamics by the cheaper LDLᵀ solve of that `M`; `prune` as in [`expand_routes`].
 pub(crate) fn expand_lagrangian(robot: &Robot, prune: bool) -> Dynamics {
-    let mut frames = frames::joint_frames(robot);
-    let coupling = mimic::Coupling::new(robot);
-    mimic::offsets(&mut frames, robot);
-    let k = robot.n_coordinates();
-    let floating = frames.base.is_some();
-    let (oq, ov) = if floating {
-        (base::NQ_BASE, base::NV_BASE)
-    } else {
-        (0, 0)
-    };
-    let nv = k + ov;
-    let mut g = ExprGraph::new();
-    let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, oq + i))).collect();
-    let xd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
-    let xdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
-    let tau: Vec<ExprId> = (0..nv).map(|i| g.input(input(TAU, i))).collect();
+    let Inputs {
+        frames,
+        coupling,
+        k,
+        oq,
+        nv,
+        mut g,
+        x,
+        xd,
+        xdd,
+        tau,
+        ..
+    } = Inputs::new(robot);
     let t = lagrangian::lagrangian(&mut g, robot, &frames, &coupling, &x, &xd);
     let bias: Vec<ExprId> = (0..nv)
         .map(|i| g.add(t.coriolis[i], t.gravity[i]))
@@ -322,9 +372,20 @@ pub(crate) fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<Expr
 
 /// The expansion; `prune`: replace identically zero nodes by 0 ([`ExprGraph::prune_zeros`]).
 pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: bool) -> Dynamics {
-    let mut frames = frames::joint_frames(robot);
-    let coupling = mimic::Coupling::new(robot);
-    mimic::offsets(&mut frames, robot);
+    let Inputs {
+        frames,
+        coupling,
+        k,
+        oq,
+        ov,
+        nv,
+        mut g,
+        x,
+        xd,
+        xdd,
+        tau,
+    } = Inputs::new(robot);
+    let floating = frames.base.is_some();
     // With mimic joints or an armature only LDLᵀ applies (see [`mimic`], and the
     // articulated-body algorithm's `D_i = I^A_{i,ss}` shortcut, which an armature breaks).
     let armature: Vec<f64> = frames.joints.iter().map(|f| f.armature).collect();
@@ -335,22 +396,6 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     } else {
         route
     };
-    // k coordinates (n physical joints when none mimics another).
-    let k = robot.n_coordinates();
-    let floating = frames.base.is_some();
-    // Offsets of the joints in q and in ν: after the base's position and quaternion, and
-    // after its twist.
-    let (oq, ov) = if floating {
-        (base::NQ_BASE, base::NV_BASE)
-    } else {
-        (0, 0)
-    };
-    let nv = k + ov;
-    let mut g = ExprGraph::new();
-    let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, oq + i))).collect();
-    let xd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QD, i))).collect();
-    let xdd: Vec<ExprId> = (0..nv).map(|i| g.input(input(QDD, i))).collect();
-    let tau: Vec<ExprId> = (0..nv).map(|i| g.input(input(TAU, i))).collect();
     // The physical joints' positions, velocities and accelerations (the inputs themselves
     // without mimic joints).
     let q = coupling.positions(&mut g, &x);
