@@ -19,7 +19,7 @@ pub mod poly;
 
 use crate::error::Error;
 use crate::expand::spatial::{JointMotion, Spatial};
-use crate::expand::{self, base, frames, input, kinematics, lagrangian, mimic, Q, QD, QDD};
+use crate::expand::{self, base, input, kinematics, lagrangian, Q, QD, QDD};
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::lie::{adjoint, trans_inv};
 use dynamics_model::Robot;
@@ -337,13 +337,16 @@ struct Steps {
 
 impl Steps {
     fn new(robot: &Robot) -> Self {
-        let mut fr = frames::joint_frames(robot);
-        let coupling = mimic::Coupling::new(robot);
-        mimic::offsets(&mut fr, robot);
-        let k = robot.n_coordinates();
-        let mut g = ExprGraph::new();
-        let x: Vec<ExprId> = (0..k).map(|i| g.input(input(Q, i))).collect();
-        let xd: Vec<ExprId> = (0..k).map(|i| g.input(input(QD, i))).collect();
+        // A fixed base (floating ones are refused before): x and ν are the k coordinates.
+        let expand::Inputs {
+            frames: fr,
+            coupling,
+            k,
+            mut g,
+            x,
+            xd,
+            ..
+        } = expand::Inputs::new(robot);
         let q = coupling.positions(&mut g, &x);
         let qd = coupling.rates(&mut g, &xd);
         let motions: Vec<JointMotion<'_>> = expand::joint_motions(&mut g, &fr, &q);

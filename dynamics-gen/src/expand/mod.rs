@@ -186,25 +186,25 @@ pub fn expand_with_route(robot: &Robot, route: ForwardRoute) -> Dynamics {
 /// What both routes start from: the joint frames (mimic offsets applied), the coupling,
 /// the sizes, and a graph with the inputs `x` (the k coordinates, after a floating base's
 /// seven q entries), `ν`, `ν̇`, `τ`.
-struct Inputs {
-    frames: frames::JointFrames,
-    coupling: mimic::Coupling,
+pub(crate) struct Inputs {
+    pub(crate) frames: frames::JointFrames,
+    pub(crate) coupling: mimic::Coupling,
     /// k coordinates (n physical joints when none mimics another).
-    k: usize,
+    pub(crate) k: usize,
     /// Offsets of the joints in q and in ν: after the base's position and quaternion, and
     /// after its twist.
-    oq: usize,
-    ov: usize,
-    nv: usize,
-    g: ExprGraph,
-    x: Vec<ExprId>,
-    xd: Vec<ExprId>,
-    xdd: Vec<ExprId>,
-    tau: Vec<ExprId>,
+    pub(crate) oq: usize,
+    pub(crate) ov: usize,
+    pub(crate) nv: usize,
+    pub(crate) g: ExprGraph,
+    pub(crate) x: Vec<ExprId>,
+    pub(crate) xd: Vec<ExprId>,
+    pub(crate) xdd: Vec<ExprId>,
+    pub(crate) tau: Vec<ExprId>,
 }
 
 impl Inputs {
-    fn new(robot: &Robot) -> Self {
+    pub(crate) fn new(robot: &Robot) -> Self {
         let mut frames = frames::joint_frames(robot);
         let coupling = mimic::Coupling::new(robot);
         mimic::offsets(&mut frames, robot);
@@ -287,11 +287,7 @@ pub(crate) fn expand_lagrangian(robot: &Robot, prune: bool) -> Dynamics {
         &forward_dynamics,
         &kinetic,
     ];
-    let (g, pruned) = if prune {
-        prune_checked(g, &roots)
-    } else {
-        (g, roots.iter().map(|r| r.to_vec()).collect())
-    };
+    let (g, pruned) = prune_if(prune, g, &roots);
     let mut pruned = pruned.into_iter();
     let mut next = || pruned.next().unwrap_or_default();
     let outputs = Outputs {
@@ -495,11 +491,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let mut roots: Vec<&[ExprId]> =
         vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics, &bias];
     roots.extend(candidates);
-    let (g, pruned) = if prune {
-        prune_checked(g, &roots)
-    } else {
-        (g, roots.iter().map(|r| r.to_vec()).collect())
-    };
+    let (g, pruned) = prune_if(prune, g, &roots);
     let mut pruned = pruned.into_iter();
     let mut next = || pruned.next().unwrap_or_default();
     let (mass_matrix, coriolis, gravity, inverse_dynamics, bias) =
@@ -610,6 +602,15 @@ fn kinetic_energy(g: &mut ExprGraph, m: &[ExprId], nv: usize) -> ExprId {
         })
         .collect();
     g.sum(&terms)
+}
+
+/// [`prune_checked`] when `prune`, else the graph and the roots unchanged.
+fn prune_if(prune: bool, g: ExprGraph, roots: &[&[ExprId]]) -> (ExprGraph, Vec<Vec<ExprId>>) {
+    if prune {
+        prune_checked(g, roots)
+    } else {
+        (g, roots.iter().map(|r| r.to_vec()).collect())
+    }
 }
 
 /// The tolerances (multiples of `ε·m`, see [`crate::expr::zeros`]) tried in turn by
