@@ -52,6 +52,7 @@ pub mod kinematics;
 pub mod lagrangian;
 pub mod ldlt;
 pub mod mimic;
+pub mod regressor;
 pub mod rnea;
 pub mod rnea_classical;
 pub mod rnea_derivatives;
@@ -723,3 +724,6 @@ mod derivatives_tests;
 
 #[cfg(test)]
 mod lagrangian_tests;
+
+#[cfg(test)]
+mod regressor_tests;
