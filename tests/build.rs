@@ -284,6 +284,7 @@ fn main() {
     let mut modules = String::new();
     let mut derivative_registry = String::new();
     let mut derivative_list = String::new();
+    let mut regressor_registry = String::new();
     for m in WITHOUT_DERIVATIVES {
         assert!(cases.iter().any(|c| c.module == *m), "no case {m}");
     }
@@ -293,6 +294,7 @@ fn main() {
             dynamics_gen::options::FUNCTIONS
                 .iter()
                 .filter(|f| !f.contains("derivative") && **f != "mass_matrix_inverse")
+                .filter(|f| !f.contains("regressor") && !f.contains("parameters"))
                 .filter(|f| !f.starts_with("frame_") || !case.robot.frames.is_empty())
                 .map(|f| f.to_string())
                 .collect()
@@ -330,7 +332,13 @@ fn main() {
         if derivatives {
             writeln!(
                 modules,
-                "derivatives_adapter!({m}, {nq}, {nv}, {s});",
+                "derivatives_adapter!({m}, {nq}, {nv}, {s});\nregressor_adapter!({m}, {nq}, {nv}, {s});",
+                m = case.module
+            )
+            .ok();
+            writeln!(
+                regressor_registry,
+                "    ({m:?}, &{m}::Robot),",
                 m = case.module
             )
             .ok();
@@ -370,7 +378,7 @@ fn main() {
         .ok();
     }
     let all = format!(
-        "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n/// The cases generated with the derivative functions: (module, functions).\npub const DERIVATIVE_CASES: &[(&str, &dyn super::GeneratedDerivatives)] = &[\n{derivative_registry}];\n"
+        "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n/// The cases generated with the derivative functions: (module, functions).\npub const DERIVATIVE_CASES: &[(&str, &dyn super::GeneratedDerivatives)] = &[\n{derivative_registry}];\n/// The cases generated with the regressor functions: (module, functions).\npub const REGRESSOR_CASES: &[(&str, &dyn super::GeneratedRegressor)] = &[\n{regressor_registry}];\n"
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(

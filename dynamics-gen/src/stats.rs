@@ -235,6 +235,20 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             });
         }
     }
+    if let Some(r) = &generated.regressor {
+        for (name, roots) in [
+            ("regressor", r.y.clone()),
+            ("inertial_parameters", r.parameter_nodes.clone()),
+            ("base_regressor", r.base_y()),
+            ("base_parameters", r.base_map.clone()),
+        ] {
+            functions.push(FunctionStats {
+                name,
+                ops: r.graph.op_counts(&roots),
+                lines: function_lines(code, name),
+            });
+        }
+    }
     let k = &generated.kinematics;
     let all = |f: fn(&FrameKinematics) -> &Vec<ExprId>| -> Vec<ExprId> {
         k.frames.iter().flat_map(|x| f(x).iter().copied()).collect()

@@ -131,6 +131,13 @@ macro_rules! compare {
                     id_ref.as_slice(),
                     "ID",
                 ));
+                // The regressor: τ = Y π = Y_b π_base (no armature on these robots).
+                let pi = $ty.inertial_parameters();
+                let y = $ty.regressor(&q, &qd, &qdd);
+                worst = worst.max(check((y * pi).as_slice(), id_ref.as_slice(), "Y π"));
+                let yb = $ty.base_regressor(&q, &qd, &qdd);
+                let pb = $ty.base_parameters(&pi);
+                worst = worst.max(check((yb * pb).as_slice(), id_ref.as_slice(), "Y_b π_b"));
                 let fd_ref = dynamics_reference::forward_dynamics(
                     &robot,
                     q.as_slice(),

@@ -295,6 +295,58 @@ macro_rules! derivatives_adapter {
     };
 }
 
+/// The regressor functions of a generated robot, through f64 slices (the cases generated
+/// with them: [`REGRESSOR_CASES`]).
+pub trait GeneratedRegressor: Sync {
+    /// `Y(q, q̇, q̈)`, nv × N_PARAMETERS.
+    fn regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DMatrix<f64>;
+    /// The robot's own standard parameters π.
+    fn inertial_parameters(&self) -> DVector<f64>;
+    /// `Y_b(q, q̇, q̈)`, nv × N_BASE_PARAMETERS.
+    fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DMatrix<f64>;
+    /// The base parameters of `pi`.
+    fn base_parameters(&self, pi: &[f64]) -> DVector<f64>;
+    /// `PARAMETER_NAMES`.
+    fn parameter_names(&self) -> Vec<&'static str>;
+}
+
+/// Implements [`GeneratedRegressor`] for the generated `$m::Robot`.
+#[macro_export]
+macro_rules! regressor_adapter {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
+        impl $crate::GeneratedRegressor for $m::Robot {
+            fn regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DMatrix<f64> {
+                to_dm(&$m::Robot::regressor(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
+                ))
+            }
+            fn inertial_parameters(&self) -> DVector<f64> {
+                to_d($m::Robot::inertial_parameters(self))
+            }
+            fn base_regressor(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DMatrix<f64> {
+                to_dm(&$m::Robot::base_regressor(
+                    self,
+                    &to_s::<$s, $nq>(q),
+                    &to_s::<$s, $nv>(qd),
+                    &to_s::<$s, $nv>(qdd),
+                ))
+            }
+            fn base_parameters(&self, pi: &[f64]) -> DVector<f64> {
+                to_d($m::Robot::base_parameters(
+                    self,
+                    &to_s::<$s, { $m::Robot::N_PARAMETERS }>(pi),
+                ))
+            }
+            fn parameter_names(&self) -> Vec<&'static str> {
+                $m::Robot::PARAMETER_NAMES.to_vec()
+            }
+        }
+    };
+}
+
 /// One compiled robot.
 pub struct Case {
     /// Its module name.
@@ -572,7 +624,7 @@ pub mod generated {
     include!(concat!(env!("OUT_DIR"), "/cases.rs"));
 }
 
-pub use generated::{CASES, DERIVATIVE_CASES};
+pub use generated::{CASES, DERIVATIVE_CASES, REGRESSOR_CASES};
 
 include!(concat!(env!("OUT_DIR"), "/with_cases.rs"));
 

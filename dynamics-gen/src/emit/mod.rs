@@ -10,6 +10,7 @@ pub mod friction;
 pub mod function;
 pub mod literal;
 pub mod provenance;
+pub mod regressor;
 pub mod text;
 pub mod trig;
 
@@ -44,6 +45,8 @@ pub struct Generated {
     pub task_space: TaskSpace,
     /// The derivatives (for statistics), when a derivative function is generated.
     pub derivatives: Option<expand::derivatives::Derivatives>,
+    /// The regressor (for statistics), when a regressor function is generated.
+    pub regressor: Option<expand::regressor::Regressor>,
     /// The friction model, when friction is in the dynamics ([`Options::friction`]).
     pub friction: Option<crate::options::Friction>,
     /// The robot as generated: validated, with the gravity override applied.
@@ -185,6 +188,14 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             &nalgebra,
             [&q, &qd, &qdd, &tau],
         ),
+        None => quote!(),
+    };
+    let regressor = REGRESSOR_FUNCTIONS
+        .iter()
+        .any(|f| wanted(f))
+        .then(|| expand::regressor::expand_regressor(&robot));
+    let regressor_fns = match &regressor {
+        Some(r) => regressor::regressor_functions(r, options, &nalgebra, [&q, &qd, &qdd]),
         None => quote!(),
     };
     let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &[q, qd]);
@@ -365,6 +376,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
 
             #derivative_fns
 
+            #regressor_fns
+
             #kinematics_fns
 
             #mul_add_fn
@@ -396,6 +409,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         kinematics,
         task_space,
         derivatives,
+        regressor,
         friction: options.friction,
         robot,
     })
@@ -905,6 +919,14 @@ const HELPERS: &[(&str, &[&str])] = &[
     ("mass_matrix_factor", &["constrained_forward_dynamics"]),
     ("solve_factored", &["constrained_forward_dynamics"]),
     ("solve_constraint", &["constrained_forward_dynamics"]),
+];
+
+/// The functions of [`regressor`].
+const REGRESSOR_FUNCTIONS: &[&str] = &[
+    "regressor",
+    "inertial_parameters",
+    "base_regressor",
+    "base_parameters",
 ];
 
 /// The functions of [`derivatives`].

@@ -165,7 +165,8 @@ pub struct GenerateArgs {
     /// forward_dynamics_with_tip, task_space_mass_matrix, task_space_bias,
     /// constrained_forward_dynamics, inverse_dynamics_derivatives,
     /// inverse_dynamics_with_derivatives, forward_dynamics_derivatives,
-    /// forward_dynamics_with_derivatives, mass_matrix_inverse, gravity_derivative,
+    /// forward_dynamics_with_derivatives, mass_matrix_inverse, gravity_derivative, regressor,
+    /// inertial_parameters, base_regressor, base_parameters,
     /// potential_energy, end_effector_pose, jacobian_space,
     /// jacobian_body, jacobian_space_dot, jacobian_body_dot, frame_poses,
     /// frame_jacobians_space, frame_jacobians_body. The runtime trait needs the first five
