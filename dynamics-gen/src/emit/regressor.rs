@@ -83,8 +83,13 @@ pub fn regressor_functions(
         .map(|b| inert(b))
         .collect::<Vec<_>>()
         .join(", ");
+    let base_first = if r.nq != r.nv {
+        " (the floating base first)"
+    } else {
+        ""
+    };
     let layout = format!(
-        " Columns: ten per body, the bodies in the order {bodies} (a floating base first), each `(m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz)` in the body's own frame (a URDF link's frame; {{i}} of the Modern Robotics lists), `I` about that frame's origin (`I = I_c − m [c]²`), in kg, kg·m and kg·m²: the order and frames of Pinocchio's `computeJointTorqueRegressor` and `Inertia::toDynamicParameters`. `PARAMETER_NAMES` names them."
+        " Columns: ten per body, the bodies in the order {bodies}{base_first}, each `(m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz)` in the body's own frame (a URDF link's frame; {{i}} of the Modern Robotics lists), `I` about that frame's origin (`I = I_c − m [c]²`), in kg, kg·m and kg·m²: the order and frames of Pinocchio's `computeJointTorqueRegressor` and `Inertia::toDynamicParameters`. `PARAMETER_NAMES` names them."
     );
     let excluded = " Not in `Y`: the rotors' armature (`τ = Y π + diag(a) q̈`, `a` the joints' `G² I_rotor`) and friction. Method: Newton–Euler of the robot with one unit parameter (the recursion is linear in the inertias, so column `j` is `∂τ/∂π_j` exactly), the kinematics shared by every column, the robot's constants folded in; on both derivation methods.";
     let zero: Vec<String> = r

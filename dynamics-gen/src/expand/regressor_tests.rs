@@ -76,9 +76,9 @@ fn check(what: &str, r: &Robot) -> Regressor {
         let (q, v, a) = random_state(&mut rng, r);
         stacked.push(eval(&y.graph, &yb, &q, &v, &a, &[]));
     }
-    if nb > 0 {
-        let rows: Vec<f64> = stacked.concat();
-        let mut w = nalgebra::DMatrix::from_row_slice(rows.len() / nb, nb, &rows);
+    let rows: Vec<f64> = stacked.concat();
+    if let Some(n_rows) = rows.len().checked_div(nb) {
+        let mut w = nalgebra::DMatrix::from_row_slice(n_rows, nb, &rows);
         for mut c in w.column_iter_mut() {
             let n = c.norm();
             c /= n;
