@@ -388,13 +388,10 @@ impl Builder {
                 } else {
                     let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
                         file: path.display().to_string(),
-                        message: "unknown file type: the robot file must end in .toml or .urdf"
+                        message: "unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"
                             .into(),
                     })?;
-                    let text = std::fs::read_to_string(path).map_err(|e| ModelError::Io {
-                        file: path.display().to_string(),
-                        message: e.to_string(),
-                    })?;
+                    let text = load::read_text(path, &path.display().to_string())?;
                     // Named as given, so the generated file does not depend on the machine.
                     let robot = load::from_str(&text, format, given, &self.options.load)?;
                     read = text;

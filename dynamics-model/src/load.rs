@@ -78,13 +78,19 @@ pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
     if path.is_file() {
         return load_file(path, options);
     }
+    if path.is_dir() {
+        return Err(ModelError::Io {
+            file: spec.to_string(),
+            message: "it is a directory; fix: give the path of a `.toml` or `.urdf` file".into(),
+        });
+    }
     if let Some(shipped) = crate::shipped::get(spec) {
         return from_str(shipped.text, shipped.format, shipped.file, options);
     }
     if Format::from_path(path).is_some() || spec.contains('/') || spec.contains('\\') {
         return Err(ModelError::Io {
             file: spec.to_string(),
-            message: "no such file".into(),
+            message: "no such file; fix: check the path (a relative path starts from the current directory)".into(),
         });
     }
     Err(ModelError::UnknownRobot {
@@ -101,13 +107,73 @@ pub fn load_file(path: &Path, options: &LoadOptions) -> Result<Robot, ModelError
     let file = path.display().to_string();
     let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
         file: file.clone(),
-        message: "unknown file type: the robot file must end in .toml or .urdf".into(),
+        message:
+            "unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"
+                .into(),
     })?;
-    let text = std::fs::read_to_string(path).map_err(|e| ModelError::Io {
-        file: file.clone(),
-        message: e.to_string(),
-    })?;
+    let text = read_text(path, &file)?;
     from_str(&text, format, &file, options)
+}
+
+/// The text of the robot file at `path`, named `file` in errors: refused when it is a
+/// directory, larger than [`MAX_FILE_BYTES`] or not UTF-8 (located at its first bad byte); a
+/// leading byte-order mark is dropped.
+pub fn read_text(path: &Path, file: &str) -> Result<String, ModelError> {
+    let io = |e: std::io::Error| ModelError::Io {
+        file: file.to_string(),
+        message: e.to_string(),
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if meta.is_dir() {
+        return Err(ModelError::Io {
+            file: file.to_string(),
+            message: "it is a directory; fix: give the path of a `.toml` or `.urdf` file".into(),
+        });
+    }
+    if meta.len() > MAX_FILE_BYTES as u64 {
+        return Err(too_large(file));
+    }
+    let bytes = std::fs::read(path).map_err(io)?;
+    decode(&bytes, file).map(str::to_string)
+}
+
+/// The largest robot file read (16 MiB). The largest robot descriptions in use (humanoids'
+/// URDFs) are a few hundred kilobytes; a bigger file is the wrong file, and is refused before
+/// it is read, whatever its size.
+pub const MAX_FILE_BYTES: usize = 16 << 20;
+
+fn too_large(file: &str) -> ModelError {
+    ModelError::Io {
+        file: file.to_string(),
+        message: format!(
+            "it is larger than {} MiB, the most a robot file is read to; fix: give the robot's \
+             `.toml` or `.urdf` file (meshes stay in files of their own)",
+            MAX_FILE_BYTES >> 20
+        ),
+    }
+}
+
+/// `bytes` as UTF-8 text without a leading byte-order mark; invalid UTF-8 is an error at
+/// the line and column of the first bad byte.
+fn decode<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str, ModelError> {
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    std::str::from_utf8(bytes).map_err(|e| {
+        let good = &bytes[..e.valid_up_to()];
+        let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+        let line_start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        // Columns count characters, as the parsers' do.
+        let column = 1 + String::from_utf8_lossy(&good[line_start..]).chars().count();
+        ModelError::Parse {
+            file: file.to_string(),
+            line,
+            column,
+            message: format!(
+                "the file is not UTF-8 text (byte 0x{:02x} at offset {}); fix: save it as UTF-8",
+                bytes[e.valid_up_to()],
+                e.valid_up_to()
+            ),
+        }
+    })
 }
 
 /// The format of a description without a file name: URDF when its first non-whitespace
@@ -127,15 +193,21 @@ pub fn from_reader(
     name: &str,
     options: &LoadOptions,
 ) -> Result<Robot, ModelError> {
-    let mut text = String::new();
+    use std::io::Read;
+    let mut bytes = Vec::new();
     reader
-        .read_to_string(&mut text)
+        .by_ref()
+        .take(MAX_FILE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
         .map_err(|e| ModelError::Io {
             file: name.to_string(),
             message: e.to_string(),
         })?;
+    if bytes.len() > MAX_FILE_BYTES {
+        return Err(too_large(name));
+    }
     // A byte-order mark is not part of the description.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let text = decode(&bytes, name)?;
     from_str(text, sniff(text), name, options)
 }
 
@@ -166,6 +238,18 @@ fn parse(
             });
         }
     }
+    let nonempty = || {
+        if text.trim().is_empty() {
+            return Err(ModelError::Parse {
+                file: file.to_string(),
+                line: 1,
+                column: 1,
+                message: "the file is empty; fix: give the robot's description (TOML or URDF)"
+                    .into(),
+            });
+        }
+        Ok(())
+    };
     let mut robot = match format {
         Format::Toml => {
             if options.snap_angles.is_some() {
@@ -180,9 +264,13 @@ fn parse(
                     message: "`tip` and `lock` apply to URDF files only; a TOML file states its chain and end effector itself".into(),
                 });
             }
+            nonempty()?;
             crate::toml_format::from_str(text, file)?
         }
-        Format::Urdf => crate::urdf::from_str(text, file, options)?,
+        Format::Urdf => {
+            nonempty()?;
+            crate::urdf::from_str(text, file, options)?
+        }
     };
     if let Some(g) = options.gravity {
         robot.gravity = g;

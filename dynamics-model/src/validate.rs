@@ -14,6 +14,7 @@
 //! | principal moments meet the triangle inequality `I₁ + I₂ ≥ I₃` | [`INERTIA_TOL`] · scale |
 //! | mimic: the leader is another joint of the robot and independent (chains resolved, see [`crate::mimic`]) | exact |
 //! | mimic: multiplier finite and non-zero, offset finite | exact |
+//! | magnitudes: mass ≤ [`MAX_MASS`], rotational inertia ≤ [`MAX_INERTIA`], home offsets and screw axes' `v` ≤ [`MAX_LENGTH`], `|g|` ≤ [`MAX_GRAVITY`] | exact |
 //!
 //! "scale" is the largest absolute entry of the matrix checked (at least 1e-300). Thin rods
 //! (`diag(4, 4, 0)`, the Exercise 8.4 pendulum) meet the triangle inequality with equality
@@ -30,6 +31,18 @@ pub const UNIT_TOL: f64 = 1e-9;
 pub const ORTHO_TOL: f64 = 1e-9;
 /// Relative tolerance on the structure and physical consistency of inertias.
 pub const INERTIA_TOL: f64 = 1e-9;
+
+/// The largest mass of a link or floating base (kg). Larger numbers are unit slips (grams
+/// given as kilograms a millionfold over, or worse); with them the generated `f32` code
+/// overflows: the products `m·ℓ²·q̇²` it forms must stay below `f32::MAX` ≈ 3.4e38.
+pub const MAX_MASS: f64 = 1e9;
+/// The largest distance of a home frame from its parent's origin, and the largest `|v|` of a
+/// screw axis (m): 10 km.
+pub const MAX_LENGTH: f64 = 1e4;
+/// The largest entry of a rotational inertia (kg·m²): [`MAX_MASS`] · [`MAX_LENGTH`]².
+pub const MAX_INERTIA: f64 = MAX_MASS * MAX_LENGTH * MAX_LENGTH;
+/// The largest gravity (m/s²): a thousand times the Earth's.
+pub const MAX_GRAVITY: f64 = 1e4;
 
 /// Every rule broken by `robot`, in chain order (empty when the robot is valid).
 pub fn validate(robot: &Robot) -> Vec<Invalid> {
@@ -62,11 +75,31 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             "give three finite numbers in m/s²",
         ));
     }
+    if robot.gravity.norm().is_finite() && robot.gravity.norm() > MAX_GRAVITY {
+        errors.push(Invalid::new(
+            Subject::Robot,
+            "gravity",
+            format!(
+                "|g| = {:e} m/s² is beyond the {MAX_GRAVITY:e} m/s² accepted",
+                robot.gravity.norm()
+            ),
+            "give gravity in m/s² (Earth: [0, 0, -9.81])",
+        ));
+    }
     for (i, j) in robot.joints.iter().enumerate() {
         let subject = Subject::Joint {
             index: Some(i),
             name: j.name.clone(),
         };
+        let v = linear(&j.screw).norm();
+        if v.is_finite() && v > MAX_LENGTH {
+            errors.push(Invalid::new(
+                subject.clone(),
+                "screw",
+                format!("|v| = {v:e} m: the axis passes farther than {MAX_LENGTH:e} m from the origin of {{0}}"),
+                "give lengths in metres",
+            ));
+        }
         if unit_axes {
             errors.extend(check_screw(subject, j.kind, &j.screw));
         } else if j.screw.iter().any(|x| !x.is_finite()) {
@@ -116,7 +149,12 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
         if let Some(e) = check_home(subject.clone(), "home", &l.home) {
             errors.push(e);
         }
-        errors.extend(check_spatial_inertia(subject, "inertia", &l.inertia.0));
+        let magnitudes = check_magnitudes(subject.clone(), &l.home, &l.inertia.0);
+        // An absurd number makes the inertia's own checks meaningless (cancellation).
+        if magnitudes.is_empty() {
+            errors.extend(check_spatial_inertia(subject, "inertia", &l.inertia.0));
+        }
+        errors.extend(magnitudes);
     }
     let frames = std::iter::once((Subject::EndEffector, &robot.end_effector)).chain(
         robot
@@ -149,11 +187,16 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
         name: robot.base.name.clone(),
     };
     if robot.base.floating {
-        errors.extend(check_spatial_inertia(
-            base,
-            "inertia",
-            &robot.base.inertia.0,
-        ));
+        let magnitudes =
+            check_magnitudes(base.clone(), &Matrix4::identity(), &robot.base.inertia.0);
+        if magnitudes.is_empty() {
+            errors.extend(check_spatial_inertia(
+                base,
+                "inertia",
+                &robot.base.inertia.0,
+            ));
+        }
+        errors.extend(magnitudes);
     }
     errors
 }
@@ -281,6 +324,46 @@ pub fn check_screw(subject: Subject, kind: JointKind, s: &nalgebra::Vector6<f64>
                 ));
             }
         }
+    }
+    errors
+}
+
+/// Checks a link's home offset and its mass and inertia against [`MAX_LENGTH`], [`MAX_MASS`]
+/// and [`MAX_INERTIA`]; non-finite numbers are left to the other checks.
+fn check_magnitudes(
+    subject: Subject,
+    home: &Matrix4<f64>,
+    g: &nalgebra::Matrix6<f64>,
+) -> Vec<Invalid> {
+    let mut errors = Vec::new();
+    let offset = home.fixed_view::<3, 1>(0, 3).norm();
+    if offset.is_finite() && offset > MAX_LENGTH {
+        errors.push(Invalid::new(
+            subject.clone(),
+            "home",
+            format!(
+                "the frame is {offset:e} m from its parent's, beyond the {MAX_LENGTH:e} m accepted"
+            ),
+            "give lengths in metres",
+        ));
+    }
+    let mass = g[(3, 3)];
+    if mass.is_finite() && mass > MAX_MASS {
+        errors.push(Invalid::new(
+            subject.clone(),
+            "mass",
+            format!("{mass:e} kg is beyond the {MAX_MASS:e} kg accepted"),
+            "give the mass in kg",
+        ));
+    }
+    let inertia = g.fixed_view::<3, 3>(0, 0).amax();
+    if inertia.is_finite() && inertia > MAX_INERTIA && mass <= MAX_MASS {
+        errors.push(Invalid::new(
+            subject,
+            "inertia",
+            format!("an entry of {inertia:e} kg·m² is beyond the {MAX_INERTIA:e} kg·m² accepted"),
+            "give the inertia in kg·m²",
+        ));
     }
     errors
 }

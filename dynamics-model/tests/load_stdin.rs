@@ -56,5 +56,8 @@ fn errors_name_stdin() {
     let m = from_reader(&[0xff, 0xfe, 0x3c][..], STDIN_NAME, &opts)
         .unwrap_err()
         .to_string();
-    assert!(m.starts_with("<stdin>: cannot read the robot file"), "{m}");
+    assert!(
+        m.starts_with("<stdin>:1:1: the file is not UTF-8 text (byte 0xff at offset 0)"),
+        "{m}"
+    );
 }

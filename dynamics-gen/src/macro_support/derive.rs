@@ -254,19 +254,20 @@ pub fn load(
     let Some(format) = Format::from_path(Path::new(&given)) else {
         errors.at(
             lit,
-            format!("`{given}`: unknown file type; the robot file must end in .urdf or .toml"),
+            format!("`{given}`: unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"),
         );
         return None;
     };
-    let text = match std::fs::read_to_string(&path) {
+    let text = match dynamics_model::load::read_text(&path, &given) {
         Ok(t) => t,
         Err(e) => {
-            errors.at(
-                lit,
-                format!(
-                    "cannot read the robot file `{given}` (resolved against CARGO_MANIFEST_DIR, or {MANIFEST_DIR_OVERRIDE} when set): {e}"
+            let message = match e {
+                ModelError::Io { message, .. } => format!(
+                    "cannot read the robot file `{given}` (resolved against CARGO_MANIFEST_DIR, or {MANIFEST_DIR_OVERRIDE} when set): {message}"
                 ),
-            );
+                other => other.to_string(),
+            };
+            errors.at(lit, message);
             return None;
         }
     };

@@ -214,7 +214,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
             .span()
             .map(|span| line_column(text, span.start))
             .unwrap_or((0, 0));
-        let message = e.message().trim().to_string();
+        let message = hint(e.message().trim(), text, e.span());
         let message = match e.span().and_then(|span| locate::context(text, span.start)) {
             Some(context) => format!("{message} (in {context})"),
             None => message,
@@ -227,6 +227,38 @@ pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
         }
     })?;
     convert::build(spec, file).map_err(|errors| ModelError::Invalid(errors).in_file(file))
+}
+
+/// The TOML parser's `message`, with the key named and a fix where the parser gives neither.
+fn hint(message: &str, text: &str, span: Option<std::ops::Range<usize>>) -> String {
+    let joint_kind = |kind: &str| format!("unknown variant `{kind}`");
+    if message == "duplicate key" {
+        let key = span
+            .and_then(|span| text.get(span.start..))
+            .and_then(|rest| rest.split(['=', '\n']).next())
+            .map(str::trim)
+            .filter(|key| !key.is_empty());
+        return match key {
+            Some(key) => format!("duplicate key `{key}`; fix: give each key once"),
+            None => format!("{message}; fix: give each key once"),
+        };
+    }
+    if message.starts_with(&joint_kind("floating")) {
+        return format!(
+            "{message}; fix: a floating base is `floating = true` in `[base]`, not a joint"
+        );
+    }
+    if message.starts_with(&joint_kind("planar")) || message.starts_with(&joint_kind("spherical")) {
+        return format!(
+            "{message}; fix: write a multi-degree-of-freedom joint as revolute and prismatic joints with massless links between them"
+        );
+    }
+    if message.starts_with(&joint_kind("fixed")) {
+        return format!(
+            "{message}; fix: a rigidly attached body is a `[[joint.link.body]]` of the link it is fixed to, not a joint"
+        );
+    }
+    message.to_string()
 }
 
 /// The 1-based line and column (in characters) of byte `offset` in `text`.

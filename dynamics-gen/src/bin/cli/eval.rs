@@ -86,6 +86,27 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
 
 /// The answer to one line, or what is wrong with it.
 fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
+    const EXAMPLE: &str = r#"{"q": [...], "qd": [...], "qdd": [...]}"#;
+    let value: serde_json::Value = serde_json::from_str(line).map_err(|e| {
+        let message = json_message(&e);
+        if message.contains("; fix: ") {
+            message
+        } else {
+            format!("not JSON: {message}; fix: write one JSON object per line, like {EXAMPLE}")
+        }
+    })?;
+    if !value.is_object() {
+        return Err(format!(
+            "expected a JSON object, found {}; fix: write one object per line, like {EXAMPLE}",
+            match value {
+                serde_json::Value::Array(_) => "an array",
+                serde_json::Value::String(_) => "a string",
+                serde_json::Value::Number(_) => "a number",
+                serde_json::Value::Bool(_) => "a boolean",
+                _ => "null",
+            }
+        ));
+    }
     let state: State = serde_json::from_str(line).map_err(|e| json_message(&e))?;
     let (nq, nv) = (robot.nq(), robot.nv());
     let mimic = match robot.dof() - robot.n_coordinates() {
@@ -110,7 +131,7 @@ fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
             None => Ok(vec![0.0; len]),
             Some(v) if v.len() == len => Ok(v),
             Some(v) => Err(format!(
-                "\"{name}\" has {} values, the robot has {}",
+                "\"{name}\" has {} values, the robot has {}; fix: give {len} values",
                 v.len(),
                 what(len)
             )),
@@ -243,8 +264,14 @@ fn pose_rows(m: &Matrix4<f64>) -> Vec<Vec<f64>> {
 fn json_message(e: &serde_json::Error) -> String {
     let text = e.to_string();
     let suffix = format!(" at line {} column {}", e.line(), e.column());
-    match text.strip_suffix(&suffix) {
+    let text = match text.strip_suffix(&suffix) {
         Some(message) => format!("{message} (column {})", e.column()),
+        None => text,
+    };
+    match text.strip_prefix("number out of range") {
+        Some(rest) => format!(
+            "a number is beyond the range of f64{rest}; fix: give finite numbers (a state has no inf or NaN)"
+        ),
         None => text,
     }
 }
