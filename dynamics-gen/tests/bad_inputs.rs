@@ -403,6 +403,32 @@ fn cases() -> Vec<Case> {
             "<axis xyz=\"0 1 0\"/>",
             "<axis xyz=\"0 1 0\"/><mimic joint=\"wrist\"/>",
         ),
+        urdf(
+            "Inertia without all six attributes",
+            " iyz=\"0\" izz=\"0.01\"/></inertial>\n  </link>\n  <joint",
+            " izz=\"0.01\"/></inertial>\n  </link>\n  <joint",
+        ),
+        urdf(
+            "Two joints with one name",
+            "<joint name=\"elbow\"",
+            "<joint name=\"shoulder\"",
+        ),
+        urdf(
+            "Joint joining a link to itself",
+            "<parent link=\"upper_arm\"/>",
+            "<parent link=\"forearm\"/>",
+        ),
+        urdf(
+            "Mimic of itself",
+            "<axis xyz=\"0 1 0\"/>",
+            "<axis xyz=\"0 1 0\"/><mimic joint=\"elbow\"/>",
+        ),
+        urdf(
+            "XML entity expansion (billion laughs)",
+            "<?xml version=\"1.0\"?>",
+            "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [<!ENTITY a \"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\">]>",
+        ),
+        urdf("Two root elements", "</robot>\n", "</robot>\n<robot name=\"three\"/>\n"),
         urdf_text(
             "No movable joint",
             "two-joint URDF with both joints `fixed`".into(),
@@ -441,6 +467,8 @@ fn cases() -> Vec<Case> {
         eval("Unknown key", "{\"q\": [0, 0], \"qdot\": [0, 0]}\n"),
         eval("Non-finite input", "{\"q\": [0, 1e999]}\n"),
         eval("A line that is not an object", "[0, 0]\n"),
+        eval("No q", "{\"qd\": [0, 0]}\n"),
+        eval("null in q", "{\"q\": [null, 0]}\n"),
         // The book's lists through the library.
         library(
             "Lists of mismatched sizes",

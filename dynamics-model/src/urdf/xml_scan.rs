@@ -75,6 +75,14 @@ pub fn scan(text: &str) -> Result<Element<'_>, Problem> {
                 }
             }
             i = end.ok_or((k, "`<!` declaration is never closed".to_string()))? + 1;
+            if let Some(e) = text[k..i].find("<!ENTITY") {
+                return Err((
+                    k + e,
+                    "entity declarations (`<!ENTITY`) are not supported; fix: write the values \
+                     out in the file (xacro's output has none)"
+                        .to_string(),
+                ));
+            }
         } else if let Some(after) = rest.strip_prefix("</") {
             let close =
                 find(k, ">").ok_or((k, "closing tag is never closed by `>`".to_string()))?;
@@ -263,7 +271,10 @@ pub fn check_urdf(robot: &Element<'_>) -> Result<(), Problem> {
                         if let Some(a) = attrs.iter().find(|a| c.attr(a).is_none()) {
                             return Err((
                                 c.offset,
-                                format!("link `{name}`: <{tag}> has no `{a}` attribute"),
+                                format!(
+                                    "link `{name}`: <{tag}> has no `{a}` attribute; fix: URDF requires all of {}",
+                                    attrs.join(", ")
+                                ),
                             ));
                         }
                     }
@@ -304,7 +315,10 @@ fn check_numbers(e: &Element<'_>, owner: &str, kind: &str, v12: bool) -> Result<
         if let Some(a) = required(c.name, v12).iter().find(|a| c.attr(a).is_none()) {
             return Err((
                 c.offset,
-                format!("{kind} `{owner}`: <{}> has no `{a}` attribute", c.name),
+                format!(
+                    "{kind} `{owner}`: <{}> has no `{a}` attribute; fix: add `{a}` (URDF requires it)",
+                    c.name
+                ),
             ));
         }
         for &(attr, value, offset) in &c.attrs {
