@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod eval;
+pub mod eval_line;
 pub mod generate;
 pub mod joints;
 
