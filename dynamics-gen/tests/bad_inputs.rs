@@ -290,6 +290,7 @@ fn cases() -> Vec<Case> {
             "name = \"two\"\ngravity = [0, 0, -9.81e6]",
         ),
         toml("Two joints with one name", "name = \"elbow\"", "name = \"shoulder\""),
+        toml("Empty joint name", "name = \"elbow\"", "name = \"\""),
         toml("Two links with one name", "name = \"forearm\"", "name = \"upper_arm\""),
         toml("A link named as the base", "name = \"forearm\"", "name = \"base\""),
         toml(

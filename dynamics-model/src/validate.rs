@@ -14,6 +14,7 @@
 //! | principal moments meet the triangle inequality `I₁ + I₂ ≥ I₃` | [`INERTIA_TOL`] · scale |
 //! | mimic: the leader is another joint of the robot and independent (chains resolved, see [`crate::mimic`]) | exact |
 //! | mimic: multiplier finite and non-zero, offset finite | exact |
+//! | joints and links have non-blank names | exact |
 //! | magnitudes: mass ≤ [`MAX_MASS`], rotational inertia ≤ [`MAX_INERTIA`], home offsets and screw axes' `v` ≤ [`MAX_LENGTH`], `|g|` ≤ [`MAX_GRAVITY`] | exact |
 //!
 //! "scale" is the largest absolute entry of the matrix checked (at least 1e-300). Thin rods
@@ -91,6 +92,14 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             index: Some(i),
             name: j.name.clone(),
         };
+        if j.name.trim().is_empty() {
+            errors.push(Invalid::new(
+                subject.clone(),
+                "name",
+                format!("joint {} has an empty name", i + 1),
+                "give every joint a name (it names the joint in messages and generated docs)",
+            ));
+        }
         let v = linear(&j.screw).norm();
         if v.is_finite() && v > MAX_LENGTH {
             errors.push(Invalid::new(
@@ -133,6 +142,14 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             index: Some(i),
             name: l.name.clone(),
         };
+        if l.name.trim().is_empty() {
+            errors.push(Invalid::new(
+                subject.clone(),
+                "name",
+                format!("link {} has an empty name", i + 1),
+                "give every link a name (it names the link in messages and generated docs)",
+            ));
+        }
         if let Some(p) = l.parent {
             if p >= i {
                 errors.push(Invalid::new(

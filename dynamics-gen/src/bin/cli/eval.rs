@@ -41,4 +41,3 @@ pub fn run(args: &EvalArgs) -> Result<(), String> {
     }
     Ok(())
 }
-
