@@ -72,3 +72,32 @@ fn mutated_files_never_panic() {
     eprintln!("{ok} mutated files loaded, {failed} refused with a message");
     assert!(failed > 100 && ok > 50);
 }
+
+/// Found by the `urdf_loader` fuzz target: a namespace declaration binding the prefix
+/// `xmlns` made urdf-rs's XML back end (RustyXML) panic while formatting the robot. The
+/// loader now blanks namespace attributes of the elements it reads; the file loads.
+#[test]
+fn namespace_declarations_on_kept_elements_are_ignored() {
+    let text = std::fs::read_to_string(data_dir().join("robots/ur5.urdf")).unwrap();
+    let plain = load_text(&text, "ur5.urdf", &LoadOptions::default()).unwrap();
+    for attrs in [
+        r#"xmlns:xmlns="http://wiki.ros.org/xacro""#,
+        r#"xmlns="http://example.org/robot" xmlns:xacro="http://wiki.ros.org/xacro""#,
+        r#"xacro:extra="1" xmlns:p="""#,
+    ] {
+        let odd = text.replacen(
+            r#"<robot name="ur5""#,
+            &format!(r#"<robot name="ur5" {attrs}"#),
+            1,
+        );
+        assert_ne!(odd, text);
+        let odd = odd.replacen(
+            r#"<link name="base_link""#,
+            &format!(r#"<link name="base_link" {attrs}"#),
+            1,
+        );
+        let robot = load_text(&odd, "ur5.urdf", &LoadOptions::default())
+            .unwrap_or_else(|e| panic!("{attrs}: {e}"));
+        assert_eq!(robot, plain, "{attrs}");
+    }
+}

@@ -11,6 +11,9 @@
 //! `urdf-rs` checks all of it (a `<texture/>` without `filename` is an error there), so the
 //! text it gets has the skipped elements replaced by spaces, character for character, with
 //! line breaks kept: line and column of everything that remains are those of the user's file.
+//! Namespace declarations and prefixed attributes (`xmlns:xacro="…"`, `xacro:foo="…"`) on the
+//! kept elements go the same way: the loader reads none, and the XML back end of `urdf-rs`
+//! panics on some of them (`xmlns:xmlns="…"`, found by fuzzing).
 
 use super::xml_scan::Element;
 
@@ -33,7 +36,8 @@ pub fn kept(parent: &str, child: &str) -> bool {
 /// breaks kept, one space per character, so lines and columns do not move).
 pub fn dynamics_only(text: &str, root: &Element<'_>) -> String {
     let mut ranges = Vec::new();
-    skipped(root, &mut ranges);
+    namespaced(text, root, &mut ranges);
+    skipped(text, root, &mut ranges);
     if ranges.is_empty() {
         return text.to_string();
     }
@@ -52,13 +56,27 @@ pub fn dynamics_only(text: &str, root: &Element<'_>) -> String {
     out
 }
 
-/// The byte ranges of the skipped elements below `e`, in file order.
-fn skipped(e: &Element<'_>, ranges: &mut Vec<(usize, usize)>) {
+/// The byte ranges of the skipped elements below `e`, and of the namespace attributes of
+/// the kept ones, in file order.
+fn skipped(text: &str, e: &Element<'_>, ranges: &mut Vec<(usize, usize)>) {
     for c in &e.children {
         if kept(e.name, c.name) {
-            skipped(c, ranges);
+            namespaced(text, c, ranges);
+            skipped(text, c, ranges);
         } else {
             ranges.push((c.offset, c.end));
+        }
+    }
+}
+
+/// The byte ranges of `e`'s attributes `xmlns`, `xmlns:…` and `prefix:…`, from the name to
+/// the closing quote of the value.
+fn namespaced(text: &str, e: &Element<'_>, ranges: &mut Vec<(usize, usize)>) {
+    for &(name, value, offset) in &e.attrs {
+        if name == "xmlns" || name.contains(':') {
+            // The value is a slice of `text`; its closing quote follows it.
+            let value_start = value.as_ptr() as usize - text.as_ptr() as usize;
+            ranges.push((offset, value_start + value.len() + 1));
         }
     }
 }
