@@ -151,3 +151,119 @@ proptest! {
         }
     }
 }
+
+/// A random URDF tree: per joint, (parent link, type, xyz, rpy, axis, mass, principal moments).
+type UrdfJoint = (usize, u8, [f64; 3], [f64; 3], [f64; 3], f64, [f64; 3]);
+
+fn urdf_joints() -> impl Strategy<Value = Vec<UrdfJoint>> {
+    prop::collection::vec(
+        (
+            any::<usize>(),
+            0u8..3,
+            [-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64],
+            [-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64],
+            [-1.0..1.0f64, -1.0..1.0f64, 0.2..1.0f64],
+            0.1..5.0f64,
+            // Moments in [0.05, 0.1] always meet the triangle inequality.
+            [0.05..0.1f64, 0.05..0.1f64, 0.05..0.1f64],
+        ),
+        1..8,
+    )
+}
+
+/// The URDF of `joints` with its links and joints written in the orders given.
+fn urdf_text(joints: &[UrdfJoint], link_order: &[usize], joint_order: &[usize]) -> String {
+    let v = |a: &[f64; 3]| format!("{} {} {}", a[0], a[1], a[2]);
+    let link = |i: usize| -> String {
+        if i == 0 {
+            return "  <link name=\"base\"/>\n".into();
+        }
+        let (.., mass, moments) = &joints[i - 1];
+        format!(
+            "  <link name=\"link{i}\"><inertial><origin xyz=\"0.01 0.02 0.03\" rpy=\"0.1 0.2 0.3\"/><mass value=\"{mass}\"/><inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/></inertial></link>\n",
+            moments[0], moments[1], moments[2]
+        )
+    };
+    let joint = |i: usize| -> String {
+        let (parent, kind, xyz, rpy, axis, ..) = &joints[i];
+        let kind = ["revolute", "continuous", "prismatic"][*kind as usize];
+        let limit = if kind == "continuous" {
+            ""
+        } else {
+            "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/>"
+        };
+        format!(
+            "  <joint name=\"joint{}\" type=\"{kind}\"><parent link=\"{}\"/><child link=\"link{}\"/><origin xyz=\"{}\" rpy=\"{}\"/><axis xyz=\"{}\"/>{limit}</joint>\n",
+            i + 1,
+            if parent % (i + 1) == 0 { "base".to_string() } else { format!("link{}", parent % (i + 1)) },
+            i + 1,
+            v(xyz),
+            v(rpy),
+            v(axis)
+        )
+    };
+    let mut text = String::from("<?xml version=\"1.0\"?>\n<robot name=\"random\">\n");
+    link_order.iter().for_each(|&i| text += &link(i));
+    joint_order.iter().for_each(|&i| text += &joint(i));
+    text + "</robot>\n"
+}
+
+/// A permutation of `0..n` from sort keys.
+fn permutation(keys: &[u64], n: usize) -> Vec<usize> {
+    let mut p: Vec<usize> = (0..n).collect();
+    p.sort_by_key(|&i| (keys.get(i).copied().unwrap_or(0), i));
+    p
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// Links may come in any order; joints in any order that keeps the order of joints
+    /// sharing a parent (siblings are numbered in file order, as in urdfdom and Pinocchio).
+    /// The robot and its generated file do not change.
+    #[test]
+    fn urdf_element_order_changes_nothing(
+        joints in urdf_joints(),
+        link_keys in prop::collection::vec(any::<u64>(), 9),
+        joint_keys in prop::collection::vec(any::<u64>(), 8),
+    ) {
+        let n = joints.len();
+        let parent = |i: usize| joints[i].0 % (i + 1);
+        let in_order: Vec<usize> = (0..n).collect();
+        let links_in_order: Vec<usize> = (0..=n).collect();
+        // Shuffle, then put each parent's joints back in their own relative order.
+        let shuffled = permutation(&joint_keys, n);
+        let mut joint_order = shuffled.clone();
+        for p in 0..=n {
+            let slots: Vec<usize> = (0..n).filter(|&k| parent(shuffled[k]) == p).collect();
+            let mut own: Vec<usize> = (0..n).filter(|&i| parent(i) == p).collect();
+            own.sort();
+            for (slot, i) in slots.into_iter().zip(own) {
+                joint_order[slot] = i;
+            }
+        }
+        let a = urdf_text(&joints, &links_in_order, &in_order);
+        let b = urdf_text(&joints, &permutation(&link_keys, n + 1), &joint_order);
+        let load = |text: &str| dynamics_model::load::from_str(
+            text,
+            dynamics_model::Format::Urdf,
+            "random.urdf",
+            &dynamics_model::LoadOptions::default(),
+        );
+        let (ra, rb) = (load(&a), load(&b));
+        match (&ra, &rb) {
+            (Ok(ra), Ok(rb)) => {
+                prop_assert!(ra == rb, "the robots differ:\n{}\n{}", a, b);
+                let options = Options {
+                    functions: Some(vec!["inverse_dynamics".into(), "frame_poses".into()]),
+                    ..Options::default()
+                };
+                let ga = generate_file(ra, &options, "random.urdf").map_err(|e| e.to_string());
+                let gb = generate_file(rb, &options, "random.urdf").map_err(|e| e.to_string());
+                prop_assert!(ga == gb, "the generated files differ");
+            }
+            (Err(ea), Err(eb)) => prop_assert_eq!(ea.to_string(), eb.to_string()),
+            _ => prop_assert!(false, "one order loads, the other not: {:?} / {:?}", ra.err(), rb.err()),
+        }
+    }
+}
