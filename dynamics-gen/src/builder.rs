@@ -388,8 +388,7 @@ impl Builder {
                 } else {
                     let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
                         file: path.display().to_string(),
-                        message: "unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"
-                            .into(),
+                        message: load::UNKNOWN_FILE_TYPE.into(),
                     })?;
                     let text = load::read_text(path, &path.display().to_string())?;
                     // Named as given, so the generated file does not depend on the machine.

@@ -131,10 +131,10 @@ fn toml(title: &str, from: &str, to: &str) -> Case {
     } else {
         format!("two-joint robot, `{from}` → `{to}`")
     };
-    toml_text(title, input, &edit(TOML, from, to))
+    toml_text(title, input, edit(TOML, from, to))
 }
 
-fn toml_text(title: &str, input: String, text: &str) -> Case {
+fn toml_text(title: &str, input: String, text: impl Into<Vec<u8>>) -> Case {
     with_file(
         cli(
             "TOML robot files",
@@ -198,12 +198,12 @@ fn library(title: &str, input: &str, f: fn() -> String) -> Case {
 }
 
 fn cases() -> Vec<Case> {
-    let mut c = vec![
+    vec![
         // TOML: syntax and schema.
         toml_text(
             "Malformed syntax",
             "two-joint robot, `mass = 2.0` → `mass = [2.0`".into(),
-            &edit(TOML, "mass = 2.0", "mass = [2.0"),
+            edit(TOML, "mass = 2.0", "mass = [2.0"),
         ),
         toml("Wrong type", "mass = 2.0", "mass = \"two\""),
         toml("Missing field", "mass = 2.0\n", ""),
@@ -333,17 +333,17 @@ fn cases() -> Vec<Case> {
         toml_text(
             "Not UTF-8",
             "`name = \"` followed by the bytes FF FE".into(),
-            "",
+            &b"name = \"\xff\xfe\"\n"[..],
         ),
         toml_text(
             "A byte-order mark (accepted)",
             "the two-joint robot after the UTF-8 byte-order mark EF BB BF".into(),
-            &format!("\u{feff}{TOML}"),
+            format!("\u{feff}{TOML}"),
         ),
         toml_text(
             "A 50 MB file",
             "50 MB of `#` comment lines".into(),
-            "",
+            "#\n".repeat(25 << 20),
         ),
         // URDF.
         urdf_text(
@@ -493,16 +493,7 @@ fn cases() -> Vec<Case> {
                 e.expect_err("refused").to_string()
             },
         ),
-    ];
-    // The byte-level files.
-    for case in &mut c {
-        match case.title.as_str() {
-            "Not UTF-8" => case.files[0].1 = b"name = \"\xff\xfe\"\n".to_vec(),
-            "A 50 MB file" => case.files[0].1 = "#\n".repeat(25 << 20).into_bytes(),
-            _ => {}
-        }
-    }
-    c
+    ]
 }
 
 /// The exit code and standard error of a case, and how long it took.

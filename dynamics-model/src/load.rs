@@ -75,14 +75,9 @@ pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
         return from_reader(std::io::stdin().lock(), STDIN_NAME, options);
     }
     let path = Path::new(spec);
-    if path.is_file() {
+    // A directory gets its own message from `read_text`.
+    if path.is_file() || path.is_dir() {
         return load_file(path, options);
-    }
-    if path.is_dir() {
-        return Err(ModelError::Io {
-            file: spec.to_string(),
-            message: "it is a directory; fix: give the path of a `.toml` or `.urdf` file".into(),
-        });
     }
     if let Some(shipped) = crate::shipped::get(spec) {
         return from_str(shipped.text, shipped.format, shipped.file, options);
@@ -105,15 +100,18 @@ pub fn load(spec: &str, options: &LoadOptions) -> Result<Robot, ModelError> {
 /// Loads a robot file; the format comes from the extension.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<Robot, ModelError> {
     let file = path.display().to_string();
+    let text = read_text(path, &file)?;
     let format = Format::from_path(path).ok_or_else(|| ModelError::Io {
         file: file.clone(),
-        message:
-            "unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"
-                .into(),
+        message: UNKNOWN_FILE_TYPE.into(),
     })?;
-    let text = read_text(path, &file)?;
     from_str(&text, format, &file, options)
 }
+
+/// What is wrong with a robot file whose extension is not `.toml`, `.urdf` or `.xml`, and the
+/// fix (every front end says it the same way).
+pub const UNKNOWN_FILE_TYPE: &str =
+    "unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)";
 
 /// The text of the robot file at `path`, named `file` in errors: refused when it is a
 /// directory, larger than [`MAX_FILE_BYTES`] or not UTF-8 (located at its first bad byte); a
@@ -189,14 +187,13 @@ pub fn sniff(text: &str) -> Format {
 /// Reads a robot description from `reader` (e.g. standard input) to its end, sniffs its
 /// format ([`sniff`]), parses and validates it; `name` names it in errors.
 pub fn from_reader(
-    mut reader: impl std::io::Read,
+    reader: impl std::io::Read,
     name: &str,
     options: &LoadOptions,
 ) -> Result<Robot, ModelError> {
     use std::io::Read;
     let mut bytes = Vec::new();
     reader
-        .by_ref()
         .take(MAX_FILE_BYTES as u64 + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| ModelError::Io {

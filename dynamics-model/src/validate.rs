@@ -76,14 +76,12 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             "give three finite numbers in m/s²",
         ));
     }
-    if robot.gravity.norm().is_finite() && robot.gravity.norm() > MAX_GRAVITY {
+    let g = robot.gravity.norm();
+    if g.is_finite() && g > MAX_GRAVITY {
         errors.push(Invalid::new(
             Subject::Robot,
             "gravity",
-            format!(
-                "|g| = {:e} m/s² is beyond the {MAX_GRAVITY:e} m/s² accepted",
-                robot.gravity.norm()
-            ),
+            format!("|g| = {g:e} m/s² is beyond the {MAX_GRAVITY:e} m/s² accepted"),
             "give gravity in m/s² (Earth: [0, 0, -9.81])",
         ));
     }

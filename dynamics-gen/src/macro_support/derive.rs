@@ -254,7 +254,7 @@ pub fn load(
     let Some(format) = Format::from_path(Path::new(&given)) else {
         errors.at(
             lit,
-            format!("`{given}`: unknown file type; fix: give a robot file ending in `.toml` or `.urdf` (or `.xml`)"),
+            format!("`{given}`: {}", dynamics_model::load::UNKNOWN_FILE_TYPE),
         );
         return None;
     };

@@ -48,28 +48,7 @@ pub struct Output {
 
 /// The answer to one line, or what is wrong with it.
 pub fn eval_line(robot: &Robot, line: &str) -> Result<Output, String> {
-    const EXAMPLE: &str = r#"{"q": [...], "qd": [...], "qdd": [...]}"#;
-    let value: serde_json::Value = serde_json::from_str(line).map_err(|e| {
-        let message = json_message(&e);
-        if message.contains("; fix: ") {
-            message
-        } else {
-            format!("not JSON: {message}; fix: write one JSON object per line, like {EXAMPLE}")
-        }
-    })?;
-    if !value.is_object() {
-        return Err(format!(
-            "expected a JSON object, found {}; fix: write one object per line, like {EXAMPLE}",
-            match value {
-                serde_json::Value::Array(_) => "an array",
-                serde_json::Value::String(_) => "a string",
-                serde_json::Value::Number(_) => "a number",
-                serde_json::Value::Bool(_) => "a boolean",
-                _ => "null",
-            }
-        ));
-    }
-    let state: State = serde_json::from_str(line).map_err(|e| json_message(&e))?;
+    let state: State = serde_json::from_str(line).map_err(|e| line_error(line, &e))?;
     let (nq, nv) = (robot.nq(), robot.nv());
     let mimic = match robot.dof() - robot.n_coordinates() {
         0 => String::new(),
@@ -223,6 +202,30 @@ fn pose_rows(m: &Matrix4<f64>) -> Vec<Vec<f64>> {
 }
 
 /// serde_json's message without its position (a line is one JSON value; the column stays).
+/// What is wrong with a line that is not a `State`: not JSON at all, JSON but not an object,
+/// or an object with a bad entry (the parser's message). Parsed a second time only here, on
+/// the error path.
+fn line_error(line: &str, e: &serde_json::Error) -> String {
+    const EXAMPLE: &str = r#"{"q": [...], "qd": [...], "qdd": [...]}"#;
+    let kind = match serde_json::from_str::<serde_json::Value>(line) {
+        Err(e) => {
+            let message = json_message(&e);
+            return if message.contains("; fix: ") {
+                message
+            } else {
+                format!("not JSON: {message}; fix: write one JSON object per line, like {EXAMPLE}")
+            };
+        }
+        Ok(serde_json::Value::Object(_)) => return json_message(e),
+        Ok(serde_json::Value::Array(_)) => "an array",
+        Ok(serde_json::Value::String(_)) => "a string",
+        Ok(serde_json::Value::Number(_)) => "a number",
+        Ok(serde_json::Value::Bool(_)) => "a boolean",
+        Ok(serde_json::Value::Null) => "null",
+    };
+    format!("expected a JSON object, found {kind}; fix: write one object per line, like {EXAMPLE}")
+}
+
 fn json_message(e: &serde_json::Error) -> String {
     let text = e.to_string();
     let suffix = format!(" at line {} column {}", e.line(), e.column());
