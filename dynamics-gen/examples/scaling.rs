@@ -11,6 +11,7 @@
 //! ```text
 //! cargo run --release -p dynamics-gen --example scaling -- 2 4 8 16 30 60
 //! cargo run --release -p dynamics-gen --example scaling -- --functions all 2 4 8
+//! cargo run --release -p dynamics-gen --example scaling -- --generate-only 100
 //! ```
 //!
 //! Default functions: `mass_matrix, coriolis, gravity, inverse_dynamics, forward_dynamics`.
@@ -69,6 +70,8 @@ fn main() -> Result<(), String> {
         functions = (list != "all").then(|| list.split(',').map(str::to_string).collect());
         args.drain(i..=i + 1);
     }
+    let generate_only = args.iter().any(|a| a == "--generate-only");
+    args.retain(|a| a != "--generate-only");
     let sizes: Vec<usize> = if args.is_empty() {
         vec![2, 4, 8, 16, 30, 60]
     } else {
@@ -85,8 +88,10 @@ fn main() -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     // nalgebra once, in both profiles, so that the table times the generated code alone.
     std::fs::write(dir.join("src/lib.rs"), "").map_err(|e| e.to_string())?;
-    build(&dir, false)?;
-    build(&dir, true)?;
+    if !generate_only {
+        build(&dir, false)?;
+        build(&dir, true)?;
+    }
 
     println!("| n | generation (s) | lines | dev build (s) | release build (s) | rustc peak (MiB, release) |");
     println!("|---|---|---|---|---|---|");
@@ -114,8 +119,16 @@ fn main() -> Result<(), String> {
         // uses them. Without the hint they are compiled here, as in a user's binary.
         let compiled = code.replace("    #[inline]\n", "");
         std::fs::write(dir.join("src/lib.rs"), &compiled).map_err(|e| e.to_string())?;
-        let (dev, _) = build(&dir, false)?;
-        let (release, peak) = build(&dir, true)?;
+        let (dev, _) = if generate_only {
+            (f64::NAN, 0.0)
+        } else {
+            build(&dir, false)?
+        };
+        let (release, peak) = if generate_only {
+            (f64::NAN, 0.0)
+        } else {
+            build(&dir, true)?
+        };
         println!(
             "| {n} | {generation:.2} | {} | {dev:.1} | {release:.1} | {peak:.0} |",
             code.lines().count()

@@ -169,3 +169,53 @@ fn panda_gravity_first_output_is_literal_zero() {
     let first = &first[..first.find(',').expect("seven outputs")];
     assert_eq!(first.trim(), "0.0", "g₁ = {first}");
 }
+
+/// Each function generated alone (with the private helpers it calls) is, token for token, the
+/// same item as in the file of all functions: selection removes functions, it never changes
+/// one (unselected functions' bodies are not even written, see `emit::emitted`).
+#[test]
+fn a_selected_function_is_the_same_item_as_in_the_full_file() {
+    use quote::ToTokens;
+    let load = LoadOptions {
+        frames: Some(vec!["forearm_link".into(), "tool0".into()]),
+        ..LoadOptions::default()
+    };
+    let robot = dynamics_model::load("ur5", &load).expect("shipped ur5");
+    let items = |options: &Options| -> Vec<(String, String)> {
+        let code = generate_file(&robot, options, "ur5").expect("generates");
+        let file = syn::parse_file(&code).expect("parses");
+        file.items
+            .iter()
+            .filter_map(|item| match item {
+                syn::Item::Impl(i) if i.trait_.is_none() => Some(i),
+                _ => None,
+            })
+            .flat_map(|i| i.items.iter())
+            .filter_map(|item| match item {
+                syn::ImplItem::Fn(f) => {
+                    Some((f.sig.ident.to_string(), f.to_token_stream().to_string()))
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    let base = Options {
+        runtime_path: None,
+        ..Options::default()
+    };
+    let all = items(&base);
+    for &name in dynamics_gen::options::FUNCTIONS {
+        let alone = items(&Options {
+            functions: Some(vec![name.to_string()]),
+            ..base.clone()
+        });
+        assert!(
+            alone.iter().any(|(n, _)| n == name),
+            "{name}: not generated when selected"
+        );
+        for (n, tokens) in &alone {
+            let full = all.iter().find(|(m, _)| m == n);
+            assert_eq!(full.map(|f| &f.1), Some(tokens), "{name}: item {n} differs");
+        }
+    }
+}

@@ -28,36 +28,45 @@ pub fn derivative_functions(
     let mat_path = quote!(#nalgebra::SMatrix::<#scalar, #nv, #nv>);
     let square = (nv_usize, nv_usize);
     let column = (nv_usize, 1);
-    let emit = |args: &[Arg], parts: &[&[crate::expr::ExprId]], shapes: &[(usize, usize)]| {
-        let outputs: Vec<_> = parts.iter().flat_map(|p| p.iter().copied()).collect();
-        let output = if shapes.len() == 1 {
-            Output::Matrix
-        } else {
-            let mut all = [(0, 0); 4];
-            all[..shapes.len()].copy_from_slice(shapes);
-            Output::Tuple {
-                shapes: all,
-                count: shapes.len(),
-            }
+    let emit =
+        |name: &str, args: &[Arg], parts: &[&[crate::expr::ExprId]], shapes: &[(usize, usize)]| {
+            let outputs: Vec<_> = parts.iter().flat_map(|p| p.iter().copied()).collect();
+            let output = if shapes.len() == 1 {
+                Output::Matrix
+            } else {
+                let mut all = [(0, 0); 4];
+                all[..shapes.len()].copy_from_slice(shapes);
+                Output::Tuple {
+                    shapes: all,
+                    count: shapes.len(),
+                }
+            };
+            body_tokens(
+                name, &x.graph, args, &outputs, shapes[0], output, options, nalgebra,
+            )
         };
-        body_tokens(
-            &x.graph, args, &outputs, shapes[0], output, options, nalgebra,
-        )
-    };
     let id_args = [q.clone(), qd.clone(), qdd.clone()];
     let fd_args = [q.clone(), qd.clone(), tau.clone()];
-    let id_derivatives = emit(&id_args, &[&x.d_tau_dq, &x.d_tau_dqd], &[square, square]);
+    let id_derivatives = emit(
+        "inverse_dynamics_derivatives",
+        &id_args,
+        &[&x.d_tau_dq, &x.d_tau_dqd],
+        &[square, square],
+    );
     let id_with = emit(
+        "inverse_dynamics_with_derivatives",
         &id_args,
         &[&x.inverse_dynamics, &x.d_tau_dq, &x.d_tau_dqd],
         &[column, square, square],
     );
     let fd_derivatives = emit(
+        "forward_dynamics_derivatives",
         &fd_args,
         &[&x.d_qdd_dq, &x.d_qdd_dqd, &x.mass_matrix_inverse],
         &[square, square, square],
     );
     let fd_with = emit(
+        "forward_dynamics_with_derivatives",
         &fd_args,
         &[
             &x.forward_dynamics,
@@ -68,11 +77,17 @@ pub fn derivative_functions(
         &[column, square, square, square],
     );
     let minv = emit(
+        "mass_matrix_inverse",
         std::slice::from_ref(q),
         &[&x.mass_matrix_inverse],
         &[square],
     );
-    let dg = emit(std::slice::from_ref(q), &[&x.gravity_derivative], &[square]);
+    let dg = emit(
+        "gravity_derivative",
+        std::slice::from_ref(q),
+        &[&x.gravity_derivative],
+        &[square],
+    );
     // With friction in the dynamics: `τ_f(q̇)` is added to inverse dynamics and subtracted
     // from the forces of forward dynamics; its diagonal Jacobian `friction_rate` enters
     // `∂τ/∂q̇` (added) and `∂q̈/∂q̇` (`−M⁻¹ diag(rate)`, column j scaled by `rate_j`).

@@ -88,16 +88,32 @@ pub struct FunctionBody<'a> {
     pub no_std: bool,
     /// The nalgebra path tokens.
     pub nalgebra: &'a TokenStream,
+    /// The generated struct, which the pieces of a split body call helpers through (a
+    /// nested `fn` cannot name `Self`); `None`: never split (see [`chunked`]).
+    pub self_ty: Option<&'a Ident>,
 }
 
 /// The most `let` statements in one block: longer bodies are split into blocks (see
 /// [`chunked`]).
 const MAX_BLOCK_LETS: usize = 512;
 
-/// A `let` statement of a body and the nodes it names.
+/// Bodies of more `let` statements than this are split into `#[inline(never)]` functions
+/// of [`PART_LETS`] statements each (see [`chunked`]). Below it (every function of a
+/// 7-joint arm) the body stays one function, which the optimiser sees whole.
+const MAX_UNSPLIT_LETS: usize = 4096;
+
+/// The `let` statements of one part of a split body (see [`chunked`]). Measured on a
+/// humanoid's (G1, floating base) derivatives, three functions of 12k–20k statements: one
+/// function each, release build 104 s; parts of 2048, 45 s; parts of 512, 31 s. The
+/// parts cost 5–7 % at run time (values crossing a boundary go through memory), whatever
+/// their size.
+const PART_LETS: usize = 512;
+
+/// A `let` statement of a body, the nodes it names and the named nodes it reads.
 struct Statement {
     defined: Vec<(Ident, ExprId)>,
     tokens: TokenStream,
+    reads: Vec<ExprId>,
 }
 
 /// The statements, in blocks of at most [`MAX_BLOCK_LETS`]: `let (x, y, …) = { …; (x, y,
@@ -106,23 +122,95 @@ struct Statement {
 /// thousands of nested scopes overflows LLVM's stack (a crash in debug builds of large
 /// trees' Coriolis matrices); blocks keep the nesting below a few thousand. Values and
 /// their order are unchanged, so the optimised code is the same.
-fn chunked(body: Vec<Statement>, last_use: &[usize]) -> TokenStream {
+///
+/// Bodies of more than [`MAX_UNSPLIT_LETS`] statements (a 30-joint chain's mass matrix, a
+/// humanoid's derivatives) are split further, into functions of [`PART_LETS`] statements:
+/// rustc's time grows faster than linearly in the size of one function (LLVM's passes over
+/// one huge block), so each part becomes a nested `#[inline(never)] fn partK([named values
+/// it reads]) -> [values later statements read]` called in its place. The values and the
+/// order of operations are unchanged (the results are bit-identical); only the part
+/// boundaries become calls. Parts call helpers through `self_ty` (`Ur5::mul_add`), since a
+/// nested `fn` cannot name `Self`.
+fn chunked(
+    body: Vec<Statement>,
+    last_use: &[usize],
+    bind: &[Binding],
+    split: Option<(&Ident, Scalar)>,
+) -> TokenStream {
+    let Some((self_ty, scalar)) = split.filter(|_| body.len() > MAX_UNSPLIT_LETS) else {
+        return blocks(body, 0, last_use);
+    };
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    let mut out = TokenStream::new();
+    // For each node, 1 + the index of the part that defines it (0: before the body) and 1 +
+    // the index of the last part that took it as a parameter.
+    let mut defined_in = vec![0u32; bind.len()];
+    let mut passed_to = vec![0u32; bind.len()];
+    let mut body = body.into_iter().peekable();
+    let (mut start, mut k) = (0, 0u32);
+    while body.peek().is_some() {
+        k += 1;
+        let part: Vec<Statement> = body.by_ref().take(PART_LETS).collect();
+        let end = start + part.len();
+        let mut params = Vec::new();
+        for s in &part {
+            for &(_, id) in &s.defined {
+                defined_in[id.index()] = k;
+            }
+            for &id in &s.reads {
+                let i = id.index();
+                if defined_in[i] != k && passed_to[i] != k {
+                    passed_to[i] = k;
+                    if let Binding::Named(name) = &bind[i] {
+                        params.push(name.clone());
+                    }
+                }
+            }
+        }
+        let exported = exported(&part, end, last_use);
+        let stmts = replace_self(blocks(part, start, last_use), self_ty);
+        let name = format_ident!("part{}", k - 1);
+        let (np, ne) = (
+            proc_macro2::Literal::usize_unsuffixed(params.len()),
+            proc_macro2::Literal::usize_unsuffixed(exported.len()),
+        );
+        out.extend(quote! {
+            #[inline(never)]
+            fn #name([#(#params),*]: [#t; #np]) -> [#t; #ne] {
+                #stmts
+                [#(#exported),*]
+            }
+            let [#(#exported),*] = #name([#(#params),*]);
+        });
+        start = end;
+    }
+    out
+}
+
+/// The names that `part` (statements `..end` of the body) defines and later statements or
+/// the outputs read.
+fn exported(part: &[Statement], end: usize, last_use: &[usize]) -> Vec<Ident> {
+    part.iter()
+        .flat_map(|s| s.defined.iter())
+        .filter(|(_, id)| last_use[id.index()] >= end)
+        .map(|(name, _)| name.clone())
+        .collect()
+}
+
+/// `body` (statements `start..` of the whole body) in blocks of at most
+/// [`MAX_BLOCK_LETS`] (see [`chunked`]); as it is when it fits in one.
+fn blocks(body: Vec<Statement>, start: usize, last_use: &[usize]) -> TokenStream {
     if body.len() <= MAX_BLOCK_LETS {
         return body.into_iter().map(|s| s.tokens).collect();
     }
     let mut out = TokenStream::new();
-    let mut start = 0;
+    let mut start = start;
     let mut body = body.into_iter().peekable();
     while body.peek().is_some() {
         let chunk: Vec<Statement> = body.by_ref().take(MAX_BLOCK_LETS).collect();
         let end = start + chunk.len();
-        let exported: Vec<&Ident> = chunk
-            .iter()
-            .flat_map(|s| s.defined.iter())
-            .filter(|(_, id)| last_use[id.index()] >= end)
-            .map(|(name, _)| name)
-            .collect();
-        let stmts = chunk.iter().map(|s| &s.tokens);
+        let exported = exported(&chunk, end, last_use);
+        let stmts = chunk.into_iter().map(|s| s.tokens);
         out.extend(quote! {
             let (#(#exported),*) = {
                 #(#stmts)*
@@ -132,6 +220,23 @@ fn chunked(body: Vec<Statement>, last_use: &[usize]) -> TokenStream {
         start = end;
     }
     out
+}
+
+/// `tokens` with every `Self` replaced by `self_ty`.
+fn replace_self(tokens: TokenStream, self_ty: &Ident) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    tokens
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Ident(i) if i == "Self" => TokenTree::Ident(self_ty.clone()),
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), replace_self(g.stream(), self_ty));
+                new.set_span(g.span());
+                TokenTree::Group(new)
+            }
+            other => other,
+        })
+        .collect()
 }
 
 #[derive(Clone)]
@@ -224,6 +329,7 @@ impl FunctionBody<'_> {
             let mut s_pats = Vec::new();
             let mut c_pats = Vec::new();
             let mut defined = Vec::new();
+            let mut reads = Vec::new();
             for &t in &batch {
                 let (arg, sin, cos) = trig[t];
                 let suffix = match g.node(arg) {
@@ -232,7 +338,7 @@ impl FunctionBody<'_> {
                 };
                 let (s, c) = (format_ident!("s{}", suffix), format_ident!("c{}", suffix));
                 args.push(self.expr(&bind, arg));
-                self.note_uses(&bind, arg, 0, &mut last_use);
+                self.note_uses(&bind, arg, 0, &mut last_use, &mut reads);
                 s_pats.push(self.trig_pattern(&mut bind, &mut defined, s, sin));
                 c_pats.push(self.trig_pattern(&mut bind, &mut defined, c, cos));
                 trig_done[t] = true;
@@ -254,6 +360,7 @@ impl FunctionBody<'_> {
                 tokens: quote! {
                     let ([#(#s_pats),*], [#(#c_pats),*]) = Self::joint_sin_cos([#(#args),*]);
                 },
+                reads,
             });
         }
         for k in 0..g.len() {
@@ -280,13 +387,15 @@ impl FunctionBody<'_> {
                     let s = format_ident!("s{}", suffix);
                     let c = format_ident!("c{}", suffix);
                     let x = self.operand(&bind, *a, 4);
-                    self.note_uses(&bind, *a, body.len(), &mut last_use);
+                    let mut reads = Vec::new();
+                    self.note_uses(&bind, *a, body.len(), &mut last_use, &mut reads);
                     let mut defined = Vec::new();
                     let s_pat = self.trig_pattern(&mut bind, &mut defined, s, trig[t].1);
                     let c_pat = self.trig_pattern(&mut bind, &mut defined, c, trig[t].2);
                     body.push(Statement {
                         defined,
                         tokens: quote! { let ([#s_pat], [#c_pat]) = Self::joint_sin_cos([#x]); },
+                        reads,
                     });
                 }
                 _ => {
@@ -308,12 +417,14 @@ impl FunctionBody<'_> {
                         let name = format_ident!("t{}", counter);
                         counter += 1;
                         let value = self.op(&bind, node);
+                        let mut reads = Vec::new();
                         for o in node.operands() {
-                            self.note_uses(&bind, o, body.len(), &mut last_use);
+                            self.note_uses(&bind, o, body.len(), &mut last_use, &mut reads);
                         }
                         body.push(Statement {
                             defined: vec![(name.clone(), id)],
                             tokens: quote! { let #name = #value; },
+                            reads,
                         });
                         bind[k] = Binding::Named(name);
                     }
@@ -365,21 +476,34 @@ impl FunctionBody<'_> {
                 }
             }
         };
+        let mut reads = Vec::new();
         for &o in self.outputs {
-            self.note_uses(&bind, o, usize::MAX, &mut last_use);
+            self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
-        stmts.extend(chunked(body, &last_use));
+        let split = self.self_ty.map(|t| (t, self.scalar));
+        stmts.extend(chunked(body, &last_use, &bind, split));
         stmts.extend(value);
         stmts
     }
 
-    /// Records that statement `at` reads the named nodes in the inline expression of `id`.
-    fn note_uses(&self, bind: &[Binding], id: ExprId, at: usize, last_use: &mut [usize]) {
+    /// Records that statement `at` reads the named nodes in the inline expression of `id`
+    /// (in `last_use`, and in `reads`, the statement's own list).
+    fn note_uses(
+        &self,
+        bind: &[Binding],
+        id: ExprId,
+        at: usize,
+        last_use: &mut [usize],
+        reads: &mut Vec<ExprId>,
+    ) {
         match bind[id.index()] {
-            Binding::Named(_) => last_use[id.index()] = last_use[id.index()].max(at),
+            Binding::Named(_) => {
+                last_use[id.index()] = last_use[id.index()].max(at);
+                reads.push(id);
+            }
             Binding::Inline => {
                 for o in self.graph.node(id).operands() {
-                    self.note_uses(bind, o, at, last_use);
+                    self.note_uses(bind, o, at, last_use, reads);
                 }
             }
         }

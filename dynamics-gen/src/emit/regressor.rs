@@ -50,27 +50,34 @@ pub fn regressor_functions(
     let scalar = Ident::new(options.scalar.as_str(), Span::call_site());
     let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
-    let emit = |args: &[Arg], outputs: &[crate::expr::ExprId], shape: (usize, usize)| {
-        body_tokens(
-            &r.graph,
-            args,
-            outputs,
-            shape,
-            Output::Matrix,
-            options,
-            nalgebra,
-        )
-    };
+    let emit =
+        |name: &str, args: &[Arg], outputs: &[crate::expr::ExprId], shape: (usize, usize)| {
+            body_tokens(
+                name,
+                &r.graph,
+                args,
+                outputs,
+                shape,
+                Output::Matrix,
+                options,
+                nalgebra,
+            )
+        };
     let state = [q.clone(), qd.clone(), qdd.clone()];
-    let y = emit(&state, &r.y, (nv_usize, p_usize));
-    let yb = emit(&state, &r.base_y(), (nv_usize, b_usize));
-    let pi_values = emit(&[], &r.parameter_nodes, (p_usize, 1));
+    let y = emit("regressor", &state, &r.y, (nv_usize, p_usize));
+    let yb = emit("base_regressor", &state, &r.base_y(), (nv_usize, b_usize));
+    let pi_values = emit("inertial_parameters", &[], &r.parameter_nodes, (p_usize, 1));
     let pi = Arg {
         name: "pi",
         group: PI,
         len: p_usize,
     };
-    let base_map = emit(std::slice::from_ref(&pi), &r.base_map, (b_usize, 1));
+    let base_map = emit(
+        "base_parameters",
+        std::slice::from_ref(&pi),
+        &r.base_map,
+        (b_usize, 1),
+    );
     let names: Vec<String> = (0..p_usize).map(|j| r.parameter_name(j)).collect();
     let base_names: Vec<String> = r
         .base_columns

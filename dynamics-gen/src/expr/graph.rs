@@ -4,7 +4,8 @@
 //! `simplify.rs`; this file holds everything that does not
 //! rewrite.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
+use std::collections::hash_map::Entry;
 
 use super::constant::Const;
 use super::node::{ExprId, Input, Node};
@@ -16,8 +17,10 @@ use super::node::{ExprId, Input, Node};
 pub struct ExprGraph {
     /// All nodes; operands always have smaller ids than their user.
     pub(super) nodes: Vec<Node>,
-    /// Node -> id, used for lookups only (never iterated).
-    pub(super) memo: HashMap<Node, ExprId>,
+    /// Node -> id, used for lookups only (never iterated, so its hasher cannot change the
+    /// output). FxHash: hashing nodes is most of the expansion's time, and the keys are the
+    /// generator's own nodes, not hostile input that could aim at collisions.
+    pub(super) memo: FxHashMap<Node, ExprId>,
 }
 
 impl ExprGraph {
@@ -31,14 +34,17 @@ impl ExprGraph {
     /// No rewriting happens here: callers (the constructors) must only pass
     /// nodes that are already in simplified normal form.
     pub(super) fn intern(&mut self, node: Node) -> ExprId {
-        if let Some(&id) = self.memo.get(&node) {
-            return id;
+        match self.memo.entry(node) {
+            Entry::Occupied(e) => *e.get(),
+            Entry::Vacant(e) => {
+                let id =
+                    ExprId(u32::try_from(self.nodes.len()).expect("expression graph overflow"));
+                debug_assert!(node.operands().all(|o| o < id), "operand out of range");
+                self.nodes.push(node);
+                e.insert(id);
+                id
+            }
         }
-        let id = ExprId(u32::try_from(self.nodes.len()).expect("expression graph overflow"));
-        debug_assert!(node.operands().all(|o| o < id), "operand out of range");
-        self.nodes.push(node);
-        self.memo.insert(node, id);
-        id
     }
 
     /// The constant `v`, or `None` if `v` is NaN or infinite.
