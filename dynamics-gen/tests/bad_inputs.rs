@@ -361,6 +361,12 @@ fn cases() -> Vec<Case> {
         urdf("Negative mass", "<mass value=\"2\"/>", "<mass value=\"-2\"/>"),
         urdf("Absurd mass", "<mass value=\"2\"/>", "<mass value=\"1e300\"/>"),
         urdf(
+            "Inertia far too large for its mass",
+            "<mass value=\"2\"/>",
+            "<mass value=\"1e-30\"/>",
+        ),
+        urdf("Negative effort limit", "effort=\"10\"", "effort=\"-10\""),
+        urdf(
             "Inertia not positive semidefinite",
             "ixx=\"0.02\" ixy=\"0\"",
             "ixx=\"0.02\" ixy=\"0.05\"",

@@ -495,6 +495,19 @@ pub fn check_mass_and_inertia(
         }
         return errors;
     }
+    // Every principal moment is at most m·R², R the body's extent from its centre of mass:
+    // an inertia that needs the mass beyond MAX_LENGTH is a unit slip (grams for kg), like
+    // the other magnitudes.
+    let gyration = (scale / mass).sqrt();
+    if gyration > MAX_LENGTH {
+        errors.push(err(
+            format!(
+                "a rotational inertia of {scale:e} kg·m² (largest entry) with a mass of {mass:e} kg puts the mass {gyration:.1e} m from its centre (radius of gyration √(I/m)), beyond the {MAX_LENGTH:e} m accepted"
+            ),
+            "give the mass in kg and the inertia in kg·m² about the centre of mass",
+        ));
+        return errors;
+    }
     let tol = INERTIA_TOL * scale.max(1e-300);
     if (i_com - i_com.transpose()).amax() > tol {
         errors.push(err(

@@ -213,6 +213,17 @@ fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> 
         ));
         return None;
     }
+    // 0 (and +∞) is URDF's "not given"; a negative limit is a slip, not "none".
+    for (name, v) in [("velocity", l.velocity), ("effort", l.effort)] {
+        if v < 0.0 {
+            errors.push(Invalid::new(
+                joint_subject(&j.name),
+                "limit",
+                format!("{name} {v} is negative"),
+                format!("give the {name} limit's magnitude, or {name}=\"0\" for none"),
+            ));
+        }
+    }
     if (l.lower == 0.0 && l.upper == 0.0) || !(l.lower.is_finite() && l.upper.is_finite()) {
         return None;
     }
