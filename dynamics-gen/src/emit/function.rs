@@ -130,7 +130,11 @@ struct Statement {
 /// it reads]) -> [values later statements read]` called in its place. The values and the
 /// order of operations are unchanged (the results are bit-identical); only the part
 /// boundaries become calls. Parts call helpers through `self_ty` (`Ur5::mul_add`), since a
-/// nested `fn` cannot name `Self`.
+/// nested `fn` cannot name `Self`. Parts are `extern "C"`: such a function cannot unwind,
+/// so its calls are `nounwind` for the optimiser even from another crate, and the function
+/// that calls the parts keeps no unwinding path (which the no-panic test checks). A Rust-ABI
+/// part would be opaque there. The parts hold the same kinds of `let` statements as an
+/// unsplit body (arithmetic, `mul_add`, `sqrt`, `joint_sin_cos`; no indexing).
 fn chunked(
     body: Vec<Statement>,
     last_use: &[usize],
@@ -176,7 +180,8 @@ fn chunked(
         );
         out.extend(quote! {
             #[inline(never)]
-            fn #name([#(#params),*]: [#t; #np]) -> [#t; #ne] {
+            #[allow(improper_ctypes_definitions)]
+            extern "C" fn #name([#(#params),*]: [#t; #np]) -> [#t; #ne] {
                 #stmts
                 [#(#exported),*]
             }
