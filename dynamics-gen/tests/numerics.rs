@@ -22,7 +22,7 @@
 
 use dynamics_gen::expand::{expand_with_route, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use dynamics_gen::expr::{ExprId, Input, Node};
-use dynamics_model::random::{random_chain, ChainSpec};
+use dynamics_model::random::{random_chain, ChainSpec, Rng};
 use dynamics_model::{LoadOptions, Robot};
 use nalgebra::{DMatrix, DVector};
 use twofloat::TwoFloat;
@@ -67,25 +67,6 @@ fn eval_both(
         roots.iter().map(|r| lo[r.index()]).collect(),
         roots.iter().map(|r| hi[r.index()]).collect(),
     )
-}
-
-/// A small deterministic generator (splitmix64) for configurations and scales.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[a, b)`.
-    fn uniform(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
 }
 
 /// One case's figures.
@@ -222,7 +203,7 @@ fn forward_dynamics_of_badly_scaled_robots_is_backward_stable() {
     for (route, route_name) in routes() {
         for dof in [3, 7, 12] {
             let mut worst = Worst::default();
-            let mut rng = Rng(dof as u64);
+            let mut rng = Rng::new(dof as u64);
             for seed in 0..12u64 {
                 let robot = random_chain(
                     seed + 100 * dof as u64,
@@ -276,7 +257,7 @@ fn forward_dynamics_at_kinematic_singularities_is_accurate() {
     for (route, route_name) in routes() {
         let d = expand_with_route(&ur5, route);
         let mut worst = Worst::default();
-        let mut rng = Rng(7);
+        let mut rng = Rng::new(7);
         for (_, q) in &singular {
             for delta in [0.0, 1e-12, 1e-9, 1e-6, 1e-3] {
                 let q: Vec<f64> = q
