@@ -151,6 +151,24 @@ impl Builder {
         self
     }
 
+    /// Leave gravity and a payload open until run time: the generated struct gets the public
+    /// fields `gravity`, `payload_mass`, `payload_com` and `payload_inertia` (`Default`: the
+    /// robot's gravity, no payload) and every function reads them; every other constant
+    /// stays folded. The payload is carried by the end effector's link, or by
+    /// [`Builder::payload_link`].
+    pub fn runtime_parameters(mut self) -> Self {
+        self.options.runtime_parameters = true;
+        self
+    }
+
+    /// The link that carries the payload of [`Builder::runtime_parameters`] (which this
+    /// turns on).
+    pub fn payload_link(mut self, link: impl Into<String>) -> Self {
+        self.options.runtime_parameters = true;
+        self.options.payload_link = Some(link.into());
+        self
+    }
+
     /// Include the joints' friction (`b q̇ + μ sgn(q̇)` from the robot file) in
     /// `inverse_dynamics`, `forward_dynamics`, their `_with_tip` forms and
     /// `constrained_forward_dynamics`. Off by default (URDF damping values are often
@@ -271,6 +289,11 @@ impl Builder {
         }
         if let Some(functions) = &o.functions {
             s += &format!(".functions({functions:?})");
+        }
+        match &o.payload_link {
+            Some(link) => s += &format!(".payload_link({link:?})"),
+            None if o.runtime_parameters => s += ".runtime_parameters()",
+            None => {}
         }
         for (joint, value) in &o.load.lock {
             s += &format!(".lock({joint:?}, {value:?})");

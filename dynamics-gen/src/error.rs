@@ -39,6 +39,16 @@ pub enum Error {
         /// The value given.
         eps: f64,
     },
+    /// Run-time parameters that cannot be generated as asked.
+    #[error("runtime parameters of robot `{robot}`: {problem}; fix: {fix} (--runtime-parameters / --payload-link, .runtime_parameters() / .payload_link(), runtime_parameters / payload_link = ..)")]
+    InvalidRuntimeParameters {
+        /// The robot's name.
+        robot: String,
+        /// What is wrong.
+        problem: String,
+        /// The fix.
+        fix: String,
+    },
     /// The robot has no movable joint.
     #[error("robot `{robot}` has no movable joint: there are no dynamics to generate")]
     NoJoints {

@@ -62,6 +62,14 @@ pub struct Options {
     /// How the dynamics are derived: Newton–Euler (default) or the Lagrangian
     /// ([`Method::Lagrangian`]); the generated API is the same.
     pub method: Method,
+    /// Leave gravity and a payload open until run time: the generated struct gets the
+    /// fields `gravity`, `payload_mass`, `payload_com` and `payload_inertia` (`Default`: the
+    /// robot's gravity, no payload) and every function reads them
+    /// ([`crate::expand::parameters`]).
+    pub runtime_parameters: bool,
+    /// The link that carries the payload (default: the end effector's link); only with
+    /// `runtime_parameters`.
+    pub payload_link: Option<String>,
 }
 
 /// The friction model of the generated `friction(q̇)`: viscous damping `b q̇` plus Coulomb
@@ -129,6 +137,8 @@ impl Default for Options {
             functions: None,
             friction: None,
             method: Method::NewtonEuler,
+            runtime_parameters: false,
+            payload_link: None,
         }
     }
 }

@@ -85,7 +85,8 @@ pub use error::{Invalid, ModelError, Subject};
 pub use inertia::SpatialInertia;
 pub use mimic::{Coupling, Mimic};
 pub use robot::{
-    Base, EndEffector, Frame, Joint, JointKind, JointLimits, Link, Robot, DEFAULT_GRAVITY,
+    Base, EndEffector, Frame, Joint, JointKind, JointLimits, Link, Robot, RuntimeParameters,
+    DEFAULT_GRAVITY,
 };
 pub mod load;
 pub mod shipped;

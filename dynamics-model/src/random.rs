@@ -170,6 +170,7 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
         },
         frames: Vec::new(),
         gravity,
+        runtime: crate::RuntimeParameters::default(),
     }
 }
 
@@ -241,6 +242,7 @@ pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
         },
         frames: Vec::new(),
         gravity,
+        runtime: crate::RuntimeParameters::default(),
     }
 }
 

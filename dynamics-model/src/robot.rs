@@ -178,6 +178,29 @@ pub struct Robot {
     pub frames: Vec<Frame>,
     /// The gravity vector in {0} (m/s²).
     pub gravity: Vector3<f64>,
+    /// The quantities that generated code reads from its struct at run time instead of
+    /// folding them in (none by default).
+    pub runtime: RuntimeParameters,
+}
+
+/// The quantities of a robot left open until run time: the generated struct carries them as
+/// fields whose `Default` is the robot's own values, and every function reads them; every
+/// other constant stays folded into the code.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RuntimeParameters {
+    /// The gravity vector in {0} ([`Robot::gravity`] is its default).
+    pub gravity: bool,
+    /// The link (0-based) that carries a payload: a rigid body added to the link's own
+    /// inertia, given by its mass, its centre of mass in the link's frame and its
+    /// rotational inertia about that centre in the link's axes; zero by default.
+    pub payload: Option<usize>,
+}
+
+impl RuntimeParameters {
+    /// Whether any quantity is left open.
+    pub fn any(&self) -> bool {
+        self.gravity || self.payload.is_some()
+    }
 }
 
 impl Robot {
@@ -250,6 +273,7 @@ impl Robot {
             },
             frames: Vec::new(),
             gravity,
+            runtime: RuntimeParameters::default(),
         })
     }
 

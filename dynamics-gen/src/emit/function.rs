@@ -10,6 +10,7 @@
 //! deterministic, so the output is byte-identical across runs.
 
 use super::literal::float_tokens;
+use crate::expand::parameters::PARAM;
 use crate::expr::{ExprGraph, ExprId, Input, Node};
 use crate::options::Scalar;
 use proc_macro2::{Ident, Span, TokenStream};
@@ -278,6 +279,40 @@ impl FunctionBody<'_> {
                 .collect();
             let arg_ident = Ident::new(arg.name, Span::call_site());
             stmts.extend(quote! { let [[#(#names),*]] = #arg_ident.data.0; });
+        }
+
+        // Run-time parameters (`crate::expand::parameters`): from the struct's fields.
+        for field in crate::expand::parameters::FIELDS {
+            let ids: Vec<Option<ExprId>> = (0..field.len)
+                .map(|k| {
+                    g.find_input(Input::new(PARAM, field.first + k as u16))
+                        .filter(|id| live[id.index()])
+                })
+                .collect();
+            if ids.iter().all(Option::is_none) {
+                continue;
+            }
+            let member = Ident::new(field.name, Span::call_site());
+            let mut names = Vec::new();
+            for (k, id) in ids.iter().enumerate() {
+                names.push(match id {
+                    Some(id) => {
+                        let name = if field.len == 1 {
+                            member.clone()
+                        } else {
+                            format_ident!("{}{}", field.name, k)
+                        };
+                        bind[id.index()] = Binding::Named(name.clone());
+                        quote!(#name)
+                    }
+                    None => quote!(_),
+                });
+            }
+            stmts.extend(if field.len == 1 {
+                quote! { let #(#names)* = self.#member; }
+            } else {
+                quote! { let [#(#names),*] = self.#member; }
+            });
         }
 
         // sin/cos pairs: one binding per argument with a live sin or cos.

@@ -61,12 +61,69 @@ pub fn prepare(robot: &Robot, options: &Options) -> Result<Robot, Error> {
         robot.gravity = g;
     }
     crate::check::check_robot(&robot)?;
+    robot.runtime = runtime_parameters(&robot, options)?;
     if let Some(crate::options::Friction::Smooth(eps)) = options.friction {
         if !(eps.is_finite() && eps > 0.0) {
             return Err(Error::InvalidFrictionSmoothing { eps });
         }
     }
     Ok(robot)
+}
+
+/// The run-time parameters `options` ask of `robot`: gravity, and a payload on the named
+/// link or on the end effector's.
+fn runtime_parameters(
+    robot: &Robot,
+    options: &Options,
+) -> Result<dynamics_model::RuntimeParameters, Error> {
+    let error = |problem: String, fix: &str| Error::InvalidRuntimeParameters {
+        robot: robot.name.clone(),
+        problem,
+        fix: fix.into(),
+    };
+    if !options.runtime_parameters {
+        return match &options.payload_link {
+            None => Ok(dynamics_model::RuntimeParameters::default()),
+            Some(link) => Err(error(
+                format!(
+                    "a payload link ({}) is named, but run-time parameters are off",
+                    text::inert(link)
+                ),
+                "turn run-time parameters on, or drop the payload link",
+            )),
+        };
+    }
+    let payload = match &options.payload_link {
+        Some(name) => match robot.links.iter().position(|l| l.name == *name) {
+            Some(i) => i,
+            None if robot.base.name == *name => {
+                return Err(error(
+                    format!(
+                        "the payload link {} is the base, which no joint moves",
+                        text::inert(name)
+                    ),
+                    "name a link that a joint moves",
+                ))
+            }
+            None => {
+                let names: Vec<String> = robot.links.iter().map(|l| text::inert(&l.name)).collect();
+                return Err(error(
+                    format!("the robot has no moving link called {}", text::inert(name)),
+                    &format!("name one of its links: {}", names.join(", ")),
+                ));
+            }
+        },
+        None => robot.end_effector.parent.ok_or_else(|| {
+            error(
+                "the end effector is on the base, so no link carries a payload by default".into(),
+                "name the payload link",
+            )
+        })?,
+    };
+    Ok(dynamics_model::RuntimeParameters {
+        gravity: true,
+        payload: Some(payload),
+    })
 }
 
 /// Expands `robot` and emits its `impl` block and struct item.
@@ -217,10 +274,14 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let kinematics_fns = kinematics_functions(&kinematics, &robot, options, &nalgebra, &[q, qd]);
     let names: Vec<&str> = robot.joint_names();
     let units = unit_doc(&robot);
-    let gravity_doc = format!(
-        " Gravity: ({}, {}, {}) m/s² in the base frame {{0}}, folded into the code.",
-        robot.gravity[0], robot.gravity[1], robot.gravity[2]
-    );
+    let gravity_doc = if robot.runtime.gravity {
+        " Gravity: the field `gravity` (m/s², in the base frame {0}), read at run time.".to_string()
+    } else {
+        format!(
+            " Gravity: ({}, {}, {}) m/s² in the base frame {{0}}, folded into the code.",
+            robot.gravity[0], robot.gravity[1], robot.gravity[2]
+        )
+    };
     let lagrangian = dynamics.method == expand::Method::Lagrangian;
     let forward_doc = match dynamics.forward_route {
         _ if lagrangian => " Method: the mass matrix and the bias `c + g` from the Lagrangian (see `mass_matrix`), then an unrolled LDLᵀ factorisation of `M` (no pivoting, no explicit inverse; one division per coordinate).",
@@ -410,12 +471,14 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         }
     };
     let struct_doc = struct_doc(&robot, options);
+    let (derives, fields, default_impl) = struct_parts(&robot, &ident, options.scalar);
     let struct_item = quote! {
         #(#[doc = #struct_doc])*
         #allow
         #[rustfmt::skip]
-        #[derive(Clone, Copy, Debug, Default)]
-        pub struct #ident;
+        #derives
+        pub struct #ident #fields
+        #default_impl
     };
     Ok(Generated {
         struct_name,
@@ -429,6 +492,84 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         friction: options.friction,
         robot,
     })
+}
+
+/// The generated struct's derives, its fields (`;` for a unit struct) and its `Default` impl
+/// (derived for a unit struct): with run-time parameters
+/// ([`crate::expand::parameters::FIELDS`]), one public field each, whose default is the
+/// robot's value.
+pub fn struct_parts(
+    robot: &Robot,
+    ident: &Ident,
+    scalar: Scalar,
+) -> (TokenStream, TokenStream, TokenStream) {
+    let fields = expand::parameters::fields(robot);
+    if fields.is_empty() {
+        return (
+            quote!(#[derive(Clone, Copy, Debug, Default)]),
+            quote!(;),
+            quote!(),
+        );
+    }
+    let defaults = expand::parameters::defaults(robot);
+    let ty = Ident::new(scalar.as_str(), Span::call_site());
+    let mut decls = Vec::new();
+    let mut inits = Vec::new();
+    for f in &fields {
+        let name = Ident::new(f.name, Span::call_site());
+        let values: Vec<TokenStream> = (0..f.len)
+            .map(|k| literal::float_tokens(defaults[f.first as usize + k], scalar))
+            .collect();
+        let (field_ty, value) = if f.len == 1 {
+            (quote!(#ty), quote!(#(#values)*))
+        } else {
+            let len = proc_macro2::Literal::usize_unsuffixed(f.len);
+            (quote!([#ty; #len]), quote!([#(#values),*]))
+        };
+        let doc = format!(" {} Read by every function that depends on it.", f.doc);
+        let default_doc = format!(" Default: {}.", default_text(f, &defaults, robot));
+        decls.push(quote! {
+            #[doc = #doc]
+            #[doc = ""]
+            #[doc = #default_doc]
+            pub #name: #field_ty
+        });
+        inits.push(quote!(#name: #value));
+    }
+    (
+        quote!(#[derive(Clone, Copy, Debug, PartialEq)]),
+        quote!({ #(#decls),* }),
+        quote! {
+            impl #ident {
+                /// The robot's own values: the robot file's gravity, no payload (as
+                /// `Default::default()`, for `const` and `static` items).
+                pub const DEFAULT: Self = Self { #(#inits),* };
+            }
+            impl ::core::default::Default for #ident {
+                /// [`Self::DEFAULT`]: the robot file's gravity, no payload.
+                fn default() -> Self {
+                    Self::DEFAULT
+                }
+            }
+        },
+    )
+}
+
+/// The default of a run-time parameter field, for its documentation.
+fn default_text(f: &expand::parameters::Field, defaults: &[f64; 13], robot: &Robot) -> String {
+    let values: Vec<String> = (0..f.len)
+        .map(|k| format!("{}", defaults[f.first as usize + k]))
+        .collect();
+    let link = robot
+        .runtime
+        .payload
+        .map(|i| inert(&robot.links[i].name))
+        .unwrap_or_default();
+    match f.name {
+        "gravity" => format!("({}), the robot's", values.join(", ")),
+        "payload_mass" => format!("0: no payload (the payload is carried by link {link})"),
+        _ => format!("[{}]", values.join(", ")),
+    }
 }
 
 /// The body of a generated function: `outputs` of `graph` as `output`, `(rows, cols)` its
@@ -1466,10 +1607,22 @@ fn struct_doc(robot: &Robot, options: &Options) -> Vec<String> {
                 ""
             }
         ),
-        format!(
-            " Gravity ({}, {}, {}) m/s² in the base frame.",
-            robot.gravity[0], robot.gravity[1], robot.gravity[2]
-        ),
+        match (robot.runtime.gravity, robot.runtime.payload) {
+            (false, _) => format!(
+                " Gravity ({}, {}, {}) m/s² in the base frame.",
+                robot.gravity[0], robot.gravity[1], robot.gravity[2]
+            ),
+            (true, payload) => format!(
+                " Run-time parameters, read from the struct's fields (`Default`: the robot's own values), every other constant folded into the code: gravity in the base frame (field `gravity`, default ({}, {}, {}) m/s²){}.",
+                robot.gravity[0],
+                robot.gravity[1],
+                robot.gravity[2],
+                payload.map_or(String::new(), |i| format!(
+                    ", and a payload carried by link {} (fields `payload_mass`, `payload_com`, `payload_inertia`; default none), added to the link's own inertia in every function",
+                    inert(&robot.links[i].name)
+                ))
+            ),
+        },
     ];
     if !robot.is_serial() {
         doc.extend([

@@ -136,7 +136,14 @@ fn describe(generated: &Generated, options: &Options) -> String {
         } else {
             "std".to_string()
         },
-        format!("gravity ({}, {}, {}) m/s²", g[0], g[1], g[2]),
+        if robot.runtime.gravity {
+            format!(
+                "gravity a run-time parameter (default ({}, {}, {}) m/s²)",
+                g[0], g[1], g[2]
+            )
+        } else {
+            format!("gravity ({}, {}, {}) m/s²", g[0], g[1], g[2])
+        },
         format!("nalgebra path {}", inert(&options.nalgebra_path)),
         format!("method {}", options.method.as_str()),
         format!(
@@ -148,6 +155,12 @@ fn describe(generated: &Generated, options: &Options) -> String {
             }
         ),
     ];
+    if let Some(i) = robot.runtime.payload {
+        parts.push(format!(
+            "run-time payload on link {}",
+            inert(&robot.links[i].name)
+        ));
+    }
     if robot.base.floating {
         parts.push(format!(
             "floating base {}{}",

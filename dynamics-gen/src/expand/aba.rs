@@ -117,7 +117,7 @@ pub fn aba(
         let s = axis(jm.frame.kind);
         let v_s = g.add(get(&vi, s), qd[i]);
         set(&mut vi, s, v_s);
-        let gi = Inertia::constant(g, &jm.frame.inertia);
+        let gi = super::parameters::link_inertia(g, jm.frame);
         pa.push(bias_force(g, &gi, &vi, bias));
         ia.push(SymInertia::rigid(g, &gi));
         c.push(ci);

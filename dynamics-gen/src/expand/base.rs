@@ -65,13 +65,14 @@ pub fn base_rotation(g: &mut ExprGraph) -> [[ExprId; 3]; 3] {
 
 /// `Rᵀ g` for the gravity vector `gravity` in {0}, with `R` from the (normalised)
 /// quaternion inputs `q[3..7]` ([`base_rotation`]).
-pub fn gravity_in_base(g: &mut ExprGraph, gravity: [f64; 3]) -> V3 {
+pub fn gravity_in_base(g: &mut ExprGraph, gravity: V3) -> V3 {
     let r = base_rotation(g);
     // (Rᵀ g)_j = Σ_i R_ij g_i; zero components of g fold away.
     std::array::from_fn(|j| {
-        let terms: Vec<ExprId> = (0..3)
-            .filter(|&i| gravity[i] != 0.0)
-            .map(|i| g.cmul(gravity[i], r[i][j]))
+        let nonzero: Vec<usize> = (0..3).filter(|&i| !g.is_zero(gravity[i])).collect();
+        let terms: Vec<ExprId> = nonzero
+            .into_iter()
+            .map(|i| g.mul(gravity[i], r[i][j]))
             .collect();
         g.sum(&terms)
     })
@@ -84,7 +85,7 @@ pub fn base_motion(
     floating: bool,
     velocity: &[ExprId],
     acceleration: &[ExprId],
-    gravity: [f64; 3],
+    gravity: V3,
 ) -> BaseMotion {
     if !floating {
         let zero = g.zero3();
@@ -95,7 +96,7 @@ pub fn base_motion(
             },
             vd: Spatial {
                 ang: zero,
-                lin: g.const3([-gravity[0], -gravity[1], -gravity[2]]),
+                lin: [g.neg(gravity[0]), g.neg(gravity[1]), g.neg(gravity[2])],
             },
         };
     }
@@ -107,7 +108,7 @@ pub fn base_motion(
         ang: [acceleration[0], acceleration[1], acceleration[2]],
         lin: [acceleration[3], acceleration[4], acceleration[5]],
     };
-    if gravity.iter().any(|&x| x != 0.0) {
+    if gravity.iter().any(|&x| !g.is_zero(x)) {
         let gb = gravity_in_base(g, gravity);
         vd.lin = g.sub3(vd.lin, gb);
     }

@@ -33,7 +33,7 @@ pub fn crba(
     let mut m = vec![zero; nv * nv];
     let mut composite: Vec<Inertia> = joints
         .iter()
-        .map(|jm| Inertia::constant(g, &jm.frame.inertia))
+        .map(|jm| super::parameters::link_inertia(g, jm.frame))
         .collect();
     let mut base_composite = base.map(|b| Inertia::constant(g, b));
     for i in (0..n).rev() {

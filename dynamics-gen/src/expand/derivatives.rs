@@ -165,7 +165,8 @@ pub(crate) fn analytical(
     let qd: Vec<ExprId> = (0..n).map(|i| g.input(input(QD, i))).collect();
     let qdd: Vec<ExprId> = (0..n).map(|i| g.input(input(QDD, i))).collect();
     let motions = super::joint_motions(g, &frames, &q);
-    let base = base::base_motion(g, false, &[], &[], frames.gravity);
+    let gravity = super::parameters::gravity(g, &frames);
+    let base = base::base_motion(g, false, &[], &[], gravity);
     let zeros = vec![g.zero(); n];
     let cost = |g: &ExprGraph, x: &[ExprId], y: &[ExprId]| g.op_counts(&[x, y].concat()).total();
     let mut best: Option<Analytical> = None;

@@ -100,6 +100,19 @@ pub struct JointFrame {
     /// The armature `G² I_rotor` ([`dynamics_model::Joint::armature`]), added to the
     /// joint's diagonal entry of M and as `armature · θ̈_i` to its force.
     pub armature: f64,
+    /// When link i carries the run-time payload ([`dynamics_model::RuntimeParameters`]):
+    /// the pose of {J_i} in the link's frame {i}, in which the payload is given.
+    pub payload: Option<PayloadPose>,
+}
+
+/// The pose `T_{i,J_i} = (R, p)` of a joint frame in its link's frame: `R` the axes of
+/// {J_i} in {i} (row-major), `p` its origin in {i}.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PayloadPose {
+    /// R.
+    pub r: [[f64; 3]; 3],
+    /// p (m).
+    pub p: [f64; 3],
 }
 
 /// The whole tree in joint frames, the floating base's inertia, and gravity in {0}.
@@ -111,8 +124,10 @@ pub struct JointFrames {
     pub base: Option<BodyInertia>,
     /// `T_{0,J_i}`: every joint frame's pose in the base frame at the home configuration.
     pub homes: Vec<Matrix4<f64>>,
-    /// Gravity in {0} (m/s²).
+    /// Gravity in {0} (m/s²): the folded value, or the default of the run-time parameter.
     pub gravity: [f64; 3],
+    /// Gravity is a run-time parameter ([`super::parameters`]) rather than a constant.
+    pub runtime_gravity: bool,
 }
 
 /// Angles within this distance (rad) of a multiple of π/2 are snapped to it, and lengths
@@ -397,6 +412,13 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
             inertia,
             offset,
             armature: joint.armature(),
+            payload: (robot.runtime.payload == Some(i)).then(|| PayloadPose {
+                r: rows(&rotation(&t_link_joint)),
+                p: {
+                    let p = translation(&t_link_joint);
+                    [p[0], p[1], p[2]]
+                },
+            }),
         });
     }
     let mut base = robot
@@ -409,6 +431,7 @@ pub fn joint_frames(robot: &Robot) -> JointFrames {
         base,
         homes: frames,
         gravity: [robot.gravity[0], robot.gravity[1], robot.gravity[2]],
+        runtime_gravity: robot.runtime.gravity,
     }
 }
 

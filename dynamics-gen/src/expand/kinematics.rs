@@ -264,6 +264,7 @@ fn potential_energy(
 ) -> ExprId {
     let homes = robot.home_poses();
     let mut total_mass = 0.0;
+    let mut payload_mass = None;
     let mut terms: [Vec<ExprId>; 3] = Default::default();
     for (i, link) in robot.links.iter().enumerate() {
         // Link i's inertia in its joint frame {J_i}: T_{i,J_i} = M_{0i}⁻¹ T_{0,J_i}.
@@ -275,6 +276,16 @@ fn potential_energy(
             terms[k].push(g.cmul(b.m, poses[i].p[k]));
             terms[k].push(rh[k]);
         }
+        // A run-time payload ([`super::parameters`]): its mass and first moment in {J_i}.
+        if let Some(pose) = &frames.joints[i].payload {
+            let payload = super::parameters::payload_inertia(g, pose);
+            payload_mass = Some(payload.m);
+            let rh = apply(g, &poses[i].r, payload.h);
+            for k in 0..3 {
+                terms[k].push(g.mul(payload.m, poses[i].p[k]));
+                terms[k].push(rh[k]);
+            }
+        }
     }
     let mut moment: V3 = std::array::from_fn(|k| g.sum(&terms[k]));
     if let Some(b) = base {
@@ -283,13 +294,24 @@ fn potential_energy(
         let h = g.const3(own.h);
         let f = g.add3(moment, h);
         let rf = apply(g, &b.r, f);
-        let mp: V3 = std::array::from_fn(|k| g.cmul(total_mass, b.p[k]));
+        let total_mass = {
+            let m = g.constant(total_mass);
+            match payload_mass {
+                Some(p) => g.add(m, p),
+                None => m,
+            }
+        };
+        let mp: V3 = std::array::from_fn(|k| g.mul(total_mass, b.p[k]));
         moment = g.add3(mp, rf);
     }
-    let gravity = robot.gravity;
-    let terms: Vec<ExprId> = (0..3)
-        .filter(|&k| gravity[k] != 0.0)
-        .map(|k| g.cmul(-gravity[k], moment[k]))
+    let gravity = super::parameters::gravity(g, frames);
+    let nonzero: Vec<usize> = (0..3).filter(|&k| !g.is_zero(gravity[k])).collect();
+    let terms: Vec<ExprId> = nonzero
+        .into_iter()
+        .map(|k| {
+            let minus_g = g.neg(gravity[k]);
+            g.mul(minus_g, moment[k])
+        })
         .collect();
     g.sum(&terms)
 }

@@ -91,9 +91,8 @@ pub(crate) fn link_twists(
     out
 }
 
-/// `Vᵀ G V` of a body with constant inertia `b`.
-fn twice_kinetic(g: &mut ExprGraph, b: &super::frames::BodyInertia, v: &Spatial) -> ExprId {
-    let gi = Inertia::constant(g, b);
+/// `Vᵀ G V` of a body with inertia `gi`.
+fn twice_kinetic(g: &mut ExprGraph, gi: Inertia, v: &Spatial) -> ExprId {
     let p = gi.apply(g, v);
     let a = g.dot(&v.ang, &p.ang);
     let l = g.dot(&v.lin, &p.lin);
@@ -134,10 +133,14 @@ pub fn lagrangian(
     let mut terms: Vec<ExprId> = motions
         .iter()
         .zip(&twists)
-        .map(|(m, v)| twice_kinetic(g, &m.frame.inertia, v))
+        .map(|(m, v)| {
+            let gi = super::parameters::link_inertia(g, m.frame);
+            twice_kinetic(g, gi, v)
+        })
         .collect();
     if let Some(b) = &frames.base {
-        terms.push(twice_kinetic(g, b, &v0));
+        let gb = Inertia::constant(g, b);
+        terms.push(twice_kinetic(g, gb, &v0));
     }
     for (i, f) in frames.joints.iter().enumerate() {
         if f.armature != 0.0 {

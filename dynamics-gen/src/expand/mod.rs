@@ -52,6 +52,7 @@ pub mod kinematics;
 pub mod lagrangian;
 pub mod ldlt;
 pub mod mimic;
+pub mod parameters;
 pub mod regressor;
 pub mod rnea;
 pub mod rnea_classical;
@@ -403,7 +404,8 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let zeros = vec![zero; nv_phys];
     let motions = joint_motions(&mut g, &frames, &q);
     let base_inertia = frames.base.as_ref();
-    let no_gravity = [0.0; 3];
+    let no_gravity = g.zero3();
+    let gravity_vec = parameters::gravity(&mut g, &frames);
     let mut mass_matrix = crba::crba(&mut g, &motions, base_inertia);
     // The armature on the joints' diagonal entries (Modern Robotics §8.9.2).
     let nv_joints = ov + armature.len();
@@ -415,7 +417,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         }
     }
     let mass_matrix = coupling.matrix(&mut g, &mass_matrix);
-    let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: [f64; 3]| {
+    let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: spatial::V3| {
         let base = base::base_motion(g, floating, &v[..ov], &vd[..ov], gravity);
         let (v, vd) = (&v[ov..], &vd[ov..]);
         let a = rnea::rnea(g, &motions, &base, base_inertia, v, vd, LinkForce::Spatial);
@@ -443,9 +445,9 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         coupling.forces(g, &best)
     };
     let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
-    let gravity = best_rnea(&mut g, &zeros, &zeros, frames.gravity);
-    let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, frames.gravity);
-    let bias = best_rnea(&mut g, &qd, &zeros, frames.gravity);
+    let gravity = best_rnea(&mut g, &zeros, &zeros, gravity_vec);
+    let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, gravity_vec);
+    let bias = best_rnea(&mut g, &qd, &zeros, gravity_vec);
     let rhs: Vec<ExprId> = (0..nv).map(|i| g.sub(tau[i], bias[i])).collect();
     // The factorisation from the first row (L D Lᵀ) or from the last (Lᵀ D L, which keeps a
     // tree's structural zeros): the cheaper.
@@ -454,7 +456,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let by_ldlt = cheaper(&g, by_ldlt, by_ltdl);
     // The cheapest of the equal ways of writing out the articulated inertias' shifts and
     // the bias wrenches (ties keep the earlier one).
-    let aba_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], frames.gravity);
+    let aba_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], gravity_vec);
     let mut by_aba: Option<Vec<ExprId>> = None;
     // The articulated-body algorithm has one coordinate per joint: not for mimic joints.
     let aba_forms = if ldlt_only {
@@ -727,3 +729,6 @@ mod lagrangian_tests;
 
 #[cfg(test)]
 mod regressor_tests;
+
+#[cfg(test)]
+mod parameters_tests;

@@ -162,6 +162,8 @@ pub fn expand_regressor(robot: &Robot) -> Regressor {
     for j in &mut massless.joints {
         j.rotor_inertia = 0.0;
     }
+    // A run-time payload is an inertia too: not in the columns (`inertial_parameters` has it).
+    massless.runtime.payload = None;
     let mut bodies = Vec::new();
     let mut parameters = Vec::new();
     if floating {
@@ -185,7 +187,8 @@ pub fn expand_regressor(robot: &Robot) -> Regressor {
         let mut jf = frames::joint_frames(&r);
         mimic::offsets(&mut jf, &r);
         let motions = joint_motions(&mut g, &jf, &q);
-        let base = base::base_motion(&mut g, floating, &qd[..ov], &qdd[..ov], jf.gravity);
+        let gravity = super::parameters::gravity(&mut g, &jf);
+        let base = base::base_motion(&mut g, floating, &qd[..ov], &qdd[..ov], gravity);
         let (v, vd) = (&qd[ov..], &qdd[ov..]);
         let bi = jf.base.as_ref();
         let a = rnea::rnea(&mut g, &motions, &base, bi, v, vd, LinkForce::Spatial);
@@ -225,7 +228,15 @@ pub fn expand_regressor(robot: &Robot) -> Regressor {
                 .fold(parameters[k], |s, &(d, beta)| s + beta * parameters[d])
         })
         .collect();
-    let parameter_nodes = parameters.iter().map(|&v| g.constant(v)).collect();
+    let mut parameter_nodes: Vec<ExprId> = parameters.iter().map(|&v| g.constant(v)).collect();
+    // A run-time payload's standard parameters, added to its link's.
+    if let Some(link) = robot.runtime.payload {
+        let first = 10 * (link + usize::from(floating));
+        let payload = super::parameters::payload_standard_parameters(&mut g);
+        for (k, p) in payload.into_iter().enumerate() {
+            parameter_nodes[first + k] = g.add(parameter_nodes[first + k], p);
+        }
+    }
     Regressor {
         parameter_nodes,
         graph: g,
@@ -288,12 +299,19 @@ fn reduce(g: &ExprGraph, robot: &Robot, y: &[ExprId], nv: usize, p: usize) -> Re
     let mut w = DMatrix::<f64>::zeros(rows, p);
     for s in 0..states {
         let (q, v, a) = random_state(&mut rng, robot);
+        // Run-time gravity: a random vector at each state, so that the base parameters hold
+        // for every gravity vector, not only the default's direction.
+        let gravity = robot
+            .runtime
+            .gravity
+            .then(|| [0; 3].map(|_| rng.uniform(-10.0, 10.0)));
         let values = g.eval(y, &|x| {
             let i = x.index as usize;
             match x.group {
                 super::Q => q[i],
                 QD => v[i],
                 QDD => a[i],
+                super::parameters::PARAM => gravity.map_or(f64::NAN, |g| g[i]),
                 _ => 0.0,
             }
         });

@@ -92,7 +92,7 @@ pub fn rnea(
             JointKind::Prismatic => &mut vdi.lin[2],
         };
         *k = g.add(*k, qdd[i]);
-        let gi = Inertia::constant(g, &jm.frame.inertia);
+        let gi = super::parameters::link_inertia(g, jm.frame);
         forces.push(link_force(g, &gi, &vi, &vdi, form));
         vs.push(vi);
         vds.push(vdi);

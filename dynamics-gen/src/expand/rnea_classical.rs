@@ -104,7 +104,7 @@ pub fn rnea_classical(
                 a[2] = g.add(a[2], qdd[i]);
             }
         }
-        let gi = Inertia::constant(g, &f.inertia);
+        let gi = super::parameters::link_inertia(g, f);
         let iwd = gi.rotational(g, wd);
         let iw = gi.rotational(g, w);
         let w_iw = g.cross(w, iw);

@@ -190,7 +190,7 @@ pub fn rnea_derivatives(
         };
         let vdi = add6(g, &w, &pq);
         let vdi = add6(g, &vdi, &sqdd);
-        let gi = Inertia::constant(g, &jm.frame.inertia);
+        let gi = super::parameters::link_inertia(g, jm.frame);
         fc.push(link_force(g, &gi, &vi, &vdi, LinkForce::Spatial));
         hc.push(gi.apply(g, &vi));
         dc.push(inertia_rate(g, &gi, &vi));

@@ -270,7 +270,7 @@ fn sym(i: &[ExprId; 6]) -> [[ExprId; 3]; 3] {
 }
 
 /// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old).
-fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
+pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
     let h = g.rot_t(r, ib.h);
     let s = sym(&ib.i);
     // A = I R (columns), then I' = Rᵀ A.

@@ -285,7 +285,8 @@ fn every_aba_form_matches_ldlt() {
             (ShiftForm::Folded, rnea::LinkForce::Classical),
             (ShiftForm::Sparse, rnea::LinkForce::Spatial),
         ] {
-            let base = base::base_motion(&mut g, false, &[], &[], frames.gravity);
+            let gravity = super::parameters::gravity(&mut g, &frames);
+            let base = base::base_motion(&mut g, false, &[], &[], gravity);
             let roots = aba::aba(&mut g, &motions, &base, None, &qd, &tau, form, bias);
             let x = g.eval(&roots, &|x: Input| {
                 let i = x.index as usize;

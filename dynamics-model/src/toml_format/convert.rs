@@ -182,6 +182,7 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
         end_effector,
         frames,
         gravity,
+        runtime: crate::RuntimeParameters::default(),
     })
 }
 

@@ -203,5 +203,6 @@ pub fn robot(
         end_effector,
         frames,
         gravity: Vector3::from(DEFAULT_GRAVITY),
+        runtime: crate::RuntimeParameters::default(),
     })
 }

@@ -189,6 +189,16 @@ pub struct GenerateArgs {
     /// and the same numbers either way; `stats --method` compares their costs.
     #[arg(long, default_value = "newton_euler", value_parser = parse_method)]
     pub method: Method,
+    /// Leave gravity and a payload open until run time: the struct gets the public fields
+    /// `gravity`, `payload_mass`, `payload_com` and `payload_inertia` (Default: the robot's
+    /// gravity, no payload), and every function reads them; every other constant stays
+    /// folded.
+    #[arg(long)]
+    pub runtime_parameters: bool,
+    /// The link that carries the payload of --runtime-parameters (default: the end
+    /// effector's link).
+    #[arg(long, value_name = "LINK", requires = "runtime_parameters")]
+    pub payload_link: Option<String>,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

@@ -25,6 +25,8 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         load: args.model.load_options(),
         functions: (!args.functions.is_empty()).then(|| args.functions.clone()),
         method: args.method,
+        runtime_parameters: args.runtime_parameters,
+        payload_link: args.payload_link.clone(),
     };
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
@@ -86,6 +88,12 @@ fn command(args: &GenerateArgs) -> String {
     }
     if args.method != Method::NewtonEuler {
         words.extend(["--method".into(), args.method.as_str().into()]);
+    }
+    if args.runtime_parameters {
+        words.push("--runtime-parameters".into());
+    }
+    if let Some(link) = &args.payload_link {
+        words.extend(["--payload-link".into(), quote(link)]);
     }
     if let Some(eps) = args.friction_smoothing {
         words.push(format!("--friction-smoothing={eps}"));
