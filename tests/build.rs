@@ -17,7 +17,28 @@ struct Case {
     scalar: Scalar,
     no_std: bool,
     friction: Option<dynamics_gen::options::Friction>,
+    /// Generated with run-time parameters (gravity, a payload on the end effector's link):
+    /// registered twice, with their defaults and with [`PAYLOAD`].
+    runtime: bool,
 }
+
+/// The cases generated a second time with run-time parameters, as modules `runtime_<case>`:
+/// a chain, a floating tree with its derivative functions, f32 `no_std`, and the
+/// Lagrangian route. Each is registered with the parameters' defaults (against the robot)
+/// and with [`PAYLOAD`] (against the robot carrying it, `Spec::Payload`), so every
+/// comparison test runs on both.
+const RUNTIME: &[&str] = &[
+    "shipped_ur5",
+    "tree_208_f64",
+    "shipped_pendulum_f32_no_std",
+    "lagrangian_shipped_ur5",
+];
+
+/// The changed run-time parameters: gravity tilted and stronger than Earth's, and a
+/// 1.7 kg payload off the link's axes with a full inertia about its centre of mass.
+const PAYLOAD: [f64; 13] = [
+    1.5, -2.0, -11.0, 1.7, 0.05, -0.08, 0.12, 0.012, 0.015, 0.009, 0.002, -0.001, 0.003,
+];
 
 /// The compiled cases without the derivative functions (the largest trees: their
 /// derivatives are checked on the expression graph instead, tests/derivatives_pinocchio.rs,
@@ -123,6 +144,7 @@ fn main() {
             scalar: Scalar::F64,
             no_std: false,
             friction: None,
+            runtime: false,
         });
     }
     for (name, tip) in [
@@ -147,6 +169,7 @@ fn main() {
             scalar: Scalar::F64,
             no_std: false,
             friction: None,
+            runtime: false,
         });
     }
     for (k, &(seed, dof)) in RANDOM.iter().enumerate() {
@@ -163,6 +186,7 @@ fn main() {
             scalar,
             no_std: k % 4 == 1,
             friction: None,
+            runtime: false,
         });
     }
     for (name, floating) in URDF_TREES {
@@ -179,6 +203,7 @@ fn main() {
             scalar: Scalar::F64,
             no_std: false,
             friction: None,
+            runtime: false,
         });
     }
     for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {
@@ -191,6 +216,7 @@ fn main() {
             scalar,
             no_std: k % 4 == 3,
             friction: None,
+            runtime: false,
         });
     }
     for (k, &(seed, dof, floating)) in MIMIC_TREES.iter().enumerate() {
@@ -208,6 +234,7 @@ fn main() {
             scalar,
             no_std: k == 2,
             friction: None,
+            runtime: false,
         });
     }
     for name in URDF_MIMIC {
@@ -221,6 +248,7 @@ fn main() {
             scalar: Scalar::F64,
             no_std: false,
             friction: None,
+            runtime: false,
         });
     }
     for &(seed, dof, floating, eps) in ACTUATED {
@@ -235,6 +263,7 @@ fn main() {
                 None => dynamics_gen::options::Friction::Coulomb,
                 Some(e) => dynamics_gen::options::Friction::Smooth(e),
             }),
+            runtime: false,
         });
     }
     {
@@ -251,6 +280,7 @@ fn main() {
             scalar: Scalar::F64,
             no_std: false,
             friction: None,
+            runtime: false,
         });
     }
     // The same robots in f32 and no_std as well.
@@ -263,6 +293,7 @@ fn main() {
             scalar: Scalar::F32,
             no_std: true,
             friction: None,
+            runtime: false,
         });
     }
 
@@ -273,6 +304,18 @@ fn main() {
             .unwrap_or_else(|| panic!("no case {module}"));
         let case = Case {
             module: format!("lagrangian_{module}"),
+            ..case.clone()
+        };
+        cases.push(case);
+    }
+    for module in RUNTIME {
+        let case = cases
+            .iter()
+            .find(|c| c.module == *module)
+            .unwrap_or_else(|| panic!("no case {module}"));
+        let case = Case {
+            module: format!("runtime_{module}"),
+            runtime: true,
             ..case.clone()
         };
         cases.push(case);
@@ -305,7 +348,8 @@ fn main() {
             no_std: case.no_std,
             friction: case.friction,
             functions,
-            method: if case.module.starts_with("lagrangian_") {
+            runtime_parameters: case.runtime,
+            method: if case.module.contains("lagrangian_") {
                 dynamics_gen::Method::Lagrangian
             } else {
                 dynamics_gen::Method::NewtonEuler
@@ -329,6 +373,24 @@ fn main() {
             m = case.module
         )
         .ok();
+        // The values each case is registered with: the struct's default (the robot itself),
+        // and for run-time parameters the changed ones as well.
+        let m = &case.module;
+        let mut instances = vec![(m.clone(), format!("{m}::Robot::DEFAULT"), case.spec.clone())];
+        if case.runtime {
+            let p: Vec<String> = PAYLOAD.iter().map(|x| format!("{x:?}")).collect();
+            instances.push((
+                format!("{m}+payload"),
+                format!(
+                    "{m}::Robot {{ gravity: [{}], payload_mass: {}, payload_com: [{}], payload_inertia: [{}] }}",
+                    p[..3].join(", "),
+                    p[3],
+                    p[4..7].join(", "),
+                    p[7..].join(", ")
+                ),
+                format!("Spec::Payload(&{}, {PAYLOAD:?})", case.spec),
+            ));
+        }
         if derivatives {
             writeln!(
                 modules,
@@ -336,12 +398,9 @@ fn main() {
                 m = case.module
             )
             .ok();
-            writeln!(
-                regressor_registry,
-                "    ({m:?}, &{m}::Robot),",
-                m = case.module
-            )
-            .ok();
+            for (name, imp, _) in &instances {
+                writeln!(regressor_registry, "    ({name:?}, &{imp}),").ok();
+            }
             if !case.no_std {
                 writeln!(
                     derivative_list,
@@ -350,12 +409,9 @@ fn main() {
                 )
                 .ok();
             }
-            writeln!(
-                derivative_registry,
-                "    ({m:?}, &{m}::Robot),",
-                m = case.module
-            )
-            .ok();
+            for (name, imp, _) in &instances {
+                writeln!(derivative_registry, "    ({name:?}, &{imp}),").ok();
+            }
         }
         writeln!(list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         if !case.no_std {
@@ -369,13 +425,13 @@ fn main() {
             )
             .ok();
         }
-        writeln!(
-            registry,
-            "    Case {{ module: {m:?}, spec: {spec}, scalar: {s:?}, imp: &{m}::Robot }},",
-            m = case.module,
-            spec = case.spec,
-        )
-        .ok();
+        for (name, imp, spec) in &instances {
+            writeln!(
+                registry,
+                "    Case {{ module: {name:?}, spec: {spec}, scalar: {s:?}, imp: &{imp} }},"
+            )
+            .ok();
+        }
     }
     let all = format!(
         "{modules}\n/// Every compiled case.\npub const CASES: &[Case] = &[\n{registry}];\n/// The cases generated with the derivative functions: (module, functions).\npub const DERIVATIVE_CASES: &[(&str, &dyn super::GeneratedDerivatives)] = &[\n{derivative_registry}];\n/// The cases generated with the regressor functions: (module, functions).\npub const REGRESSOR_CASES: &[(&str, &dyn super::GeneratedRegressor)] = &[\n{regressor_registry}];\n"

@@ -461,6 +461,14 @@ fn cases() -> Vec<Case> {
         args("Gravity not three numbers", &["generate", "ur5", "--gravity", "0,-9.81"]),
         args("Lock of an unknown joint", &["generate", "ur5", "--lock", "wrist_9_joint=0"]),
         args("Unknown tip link", &["generate", "ur5", "--tip", "gripper"]),
+        args(
+            "Unknown payload link",
+            &["generate", "ur5", "--runtime-parameters", "--payload-link", "gripper"],
+        ),
+        args(
+            "Payload link without run-time parameters",
+            &["generate", "ur5", "--payload-link", "wrist_3_link"],
+        ),
         args("Unknown scalar type", &["generate", "ur5", "--scalar", "f16"]),
         with_file(
             args("URDF option on a TOML file", &["generate", "robot.toml", "--tip", "forearm"]),

@@ -58,6 +58,45 @@ dynamics_macros::robot! {
     end_effector bob { home: { xyz: [0, 0, 0] } },
 }
 
+dynamics_macros::robot! {
+    /// robots/pendulum.toml, inline, with run-time gravity and a payload on its first link.
+    pub struct PendulumPayload;
+    gravity: [0.0, 0.0, -10.0],
+    runtime_parameters: true,
+    payload_link: arm,
+    joint revolute joint1 {
+        screw: [0, 0, 1, 0, 0, 0],
+        link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+    },
+    joint revolute joint2 {
+        screw: [1, 0, 0, 0, 0, 0],
+        link pendulum { home: { xyz: [0, 0, -1] }, mass: 2.0, inertia: [4, 4, 0, 0, 0, 0] },
+    },
+    end_effector bob { home: { xyz: [0, 0, 0] } },
+}
+
+/// The UR5 with run-time gravity and a payload on the end effector's link: the struct
+/// declares the fields the generated methods read.
+#[derive(Dynamics, Clone, Copy, Debug)]
+#[dynamics(file = "../robots/ur5.urdf", runtime_parameters)]
+struct Ur5Payload {
+    gravity: [f64; 3],
+    payload_mass: f64,
+    payload_com: [f64; 3],
+    payload_inertia: [f64; 6],
+}
+
+impl Default for Ur5Payload {
+    fn default() -> Self {
+        Self {
+            gravity: Self::DEFAULT_GRAVITY,
+            payload_mass: 0.0,
+            payload_com: [0.0; 3],
+            payload_inertia: [0.0; 6],
+        }
+    }
+}
+
 fn load(file: &str) -> Robot {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(file);
     load_file(&path, &LoadOptions::default()).unwrap()
@@ -208,3 +247,122 @@ fn inline_pendulum_matches_closed_forms() {
     assert_eq!(Pendulum::DOF, 2);
     assert_eq!(Pendulum::JOINT_NAMES, ["joint1", "joint2"]);
 }
+
+/// `robot` with gravity `g` and a payload (mass `m`, centre of mass `c` in the link's frame,
+/// inertia `i` about it as `[xx, yy, zz, xy, xz, yz]`) added to link `link`, in the model.
+fn with_payload(
+    robot: &Robot,
+    link: usize,
+    g: [f64; 3],
+    m: f64,
+    c: [f64; 3],
+    i: [f64; 6],
+) -> Robot {
+    let mut r = robot.clone();
+    r.gravity = nalgebra::Vector3::from(g);
+    let [xx, yy, zz, xy, xz, yz] = i;
+    let inertia = nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+    let t = dynamics_model::lie::rp_to_trans(
+        &nalgebra::Matrix3::identity(),
+        &nalgebra::Vector3::from(c),
+    );
+    let payload = dynamics_model::SpatialInertia::from_com_frame(m, inertia, &t);
+    r.links[link].inertia = dynamics_model::SpatialInertia(r.links[link].inertia.0 + payload.0);
+    r
+}
+
+macro_rules! compare_payload {
+    ($name:ident, $ty:ident, $file:expr, $n:literal, $link:expr) => {
+        #[test]
+        fn $name() {
+            let robot = load($file);
+            let (g, m, c, i) = (
+                [1.0, -2.0, -11.0],
+                1.7,
+                [0.05, -0.08, 0.12],
+                [0.012, 0.015, 0.009, 0.002, -0.001, 0.003],
+            );
+            let link = $link(&robot);
+            let changed = with_payload(&robot, link, g, m, c, i);
+            let default = $ty::default();
+            assert_eq!(
+                default.gravity,
+                [robot.gravity[0], robot.gravity[1], robot.gravity[2]]
+            );
+            assert_eq!(default.payload_mass, 0.0);
+            let carrying = $ty {
+                gravity: g,
+                payload_mass: m,
+                payload_com: c,
+                payload_inertia: i,
+            };
+            let mut rng = Lcg(29);
+            for _ in 0..5 {
+                let q: SVector<f64, $n> = rng.vector(3.0);
+                let qd: SVector<f64, $n> = rng.vector(2.0);
+                let qdd: SVector<f64, $n> = rng.vector(2.0);
+                let tau: SVector<f64, $n> = rng.vector(20.0);
+                for (imp, r, what) in [
+                    (default, &robot, "default"),
+                    (carrying, &changed, "payload"),
+                ] {
+                    let gr = r.gravity;
+                    let m_ref = dynamics_reference::mass_matrix(r, q.as_slice());
+                    check(imp.mass_matrix(&q).as_slice(), m_ref.as_slice(), what);
+                    let id_ref = dynamics_reference::inverse_dynamics(
+                        r,
+                        q.as_slice(),
+                        qd.as_slice(),
+                        qdd.as_slice(),
+                        &gr,
+                        &Vector6::zeros(),
+                    );
+                    check(
+                        imp.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+                        id_ref.as_slice(),
+                        what,
+                    );
+                    let g_ref = dynamics_reference::gravity_forces(r, q.as_slice(), &gr);
+                    check(imp.gravity(&q).as_slice(), g_ref.as_slice(), what);
+                    let fd_ref = dynamics_reference::forward_dynamics(
+                        r,
+                        q.as_slice(),
+                        qd.as_slice(),
+                        tau.as_slice(),
+                        &gr,
+                        &Vector6::zeros(),
+                    )
+                    .unwrap();
+                    check(
+                        imp.forward_dynamics(&q, &qd, &tau).as_slice(),
+                        fd_ref.as_slice(),
+                        what,
+                    );
+                    let y = imp.regressor(&q, &qd, &qdd);
+                    check(
+                        (y * imp.inertial_parameters()).as_slice(),
+                        id_ref.as_slice(),
+                        what,
+                    );
+                    let p_ref = dynamics_reference::potential_energy(r, q.as_slice(), &gr);
+                    check(&[imp.potential_energy(&q)], &[p_ref], what);
+                }
+            }
+        }
+    };
+}
+
+compare_payload!(
+    inline_pendulum_runtime_parameters_match_reference,
+    PendulumPayload,
+    "robots/pendulum.toml",
+    2,
+    |_: &Robot| 0
+);
+compare_payload!(
+    derive_ur5_runtime_parameters_match_reference,
+    Ur5Payload,
+    "robots/ur5.urdf",
+    6,
+    |r: &Robot| r.end_effector.parent.unwrap()
+);

@@ -31,6 +31,29 @@ pub enum Spec {
     /// `tests/data/robots/panda.urdf` (tip `panda_hand`) with `panda_armature`, compared with
     /// Pinocchio's `model.armature` numbers.
     PandaArmature,
+    /// A robot generated with run-time parameters, evaluated with the gravity `values[..3]`
+    /// and a payload on the end effector's link (mass `values[3]`, centre of mass
+    /// `values[4..7]`, inertia about it `values[7..13]` as `[xx, yy, zz, xy, xz, yz]`):
+    /// [`with_payload`] of the inner robot.
+    Payload(&'static Spec, [f64; 13]),
+}
+
+/// `robot` with gravity `values[..3]` and the payload of `values[3..]` (see
+/// [`Spec::Payload`]) added to link `link`'s spatial inertia, numerically in the model.
+pub fn with_payload(robot: &Robot, link: usize, values: &[f64; 13]) -> Robot {
+    use nalgebra::{Matrix3, Vector3};
+    let mut r = robot.clone();
+    r.gravity = Vector3::new(values[0], values[1], values[2]);
+    let [xx, yy, zz, xy, xz, yz] = [7, 8, 9, 10, 11, 12].map(|k| values[k]);
+    let inertia = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+    let com = Vector3::new(values[4], values[5], values[6]);
+    let payload = dynamics_model::SpatialInertia::from_com_frame(
+        values[3],
+        inertia,
+        &dynamics_model::lie::rp_to_trans(&Matrix3::identity(), &com),
+    );
+    r.links[link].inertia = dynamics_model::SpatialInertia(r.links[link].inertia.0 + payload.0);
+    r
 }
 
 include!("tree_spec.rs");
@@ -84,6 +107,14 @@ impl Spec {
                 dynamics_model::load_file(&path, &LoadOptions::default())
                     .unwrap_or_else(|e| panic!("{e}"))
             }
+            Spec::Payload(inner, values) => {
+                let robot = inner.robot();
+                let link = robot
+                    .end_effector
+                    .parent
+                    .expect("the end effector is on a link");
+                with_payload(&robot, link, &values)
+            }
         }
     }
 }
@@ -94,6 +125,7 @@ impl Spec {
     pub fn friction_in_dynamics(&self, robot: &Robot, qd: &[f64]) -> nalgebra::DVector<f64> {
         match *self {
             Spec::Actuated(.., eps) => dynamics_reference::friction_forces(robot, qd, eps),
+            Spec::Payload(inner, _) => inner.friction_in_dynamics(robot, qd),
             _ => nalgebra::DVector::zeros(robot.nv()),
         }
     }

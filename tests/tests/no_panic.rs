@@ -35,87 +35,87 @@ mod release {
                 type V = SVector<$s, $nv>;
                 #[no_panic]
                 pub fn mass_matrix(q: &Q) -> SMatrix<$s, $nv, $nv> {
-                    Robot.mass_matrix(q)
+                    Robot::DEFAULT.mass_matrix(q)
                 }
                 #[no_panic]
                 pub fn coriolis(q: &Q, qd: &V) -> V {
-                    Robot.coriolis(q, qd)
+                    Robot::DEFAULT.coriolis(q, qd)
                 }
                 #[no_panic]
                 pub fn gravity(q: &Q) -> V {
-                    Robot.gravity(q)
+                    Robot::DEFAULT.gravity(q)
                 }
                 #[no_panic]
                 pub fn inverse_dynamics(q: &Q, qd: &V, qdd: &V) -> V {
-                    Robot.inverse_dynamics(q, qd, qdd)
+                    Robot::DEFAULT.inverse_dynamics(q, qd, qdd)
                 }
                 #[no_panic]
                 pub fn forward_dynamics(q: &Q, qd: &V, tau: &V) -> V {
-                    Robot.forward_dynamics(q, qd, tau)
+                    Robot::DEFAULT.forward_dynamics(q, qd, tau)
                 }
                 #[no_panic]
                 pub fn kinetic_energy(q: &Q, qd: &V) -> $s {
-                    Robot.kinetic_energy(q, qd)
+                    Robot::DEFAULT.kinetic_energy(q, qd)
                 }
                 #[no_panic]
                 pub fn potential_energy(q: &Q) -> $s {
-                    Robot.potential_energy(q)
+                    Robot::DEFAULT.potential_energy(q)
                 }
                 #[no_panic]
                 pub fn mass_matrix_dot(q: &Q, qd: &V) -> SMatrix<$s, $nv, $nv> {
-                    Robot.mass_matrix_dot(q, qd)
+                    Robot::DEFAULT.mass_matrix_dot(q, qd)
                 }
                 #[no_panic]
                 pub fn jacobian_space_dot(q: &Q, qd: &V) -> SMatrix<$s, 6, $nv> {
-                    Robot.jacobian_space_dot(q, qd)
+                    Robot::DEFAULT.jacobian_space_dot(q, qd)
                 }
                 #[no_panic]
                 pub fn jacobian_body_dot(q: &Q, qd: &V) -> SMatrix<$s, 6, $nv> {
-                    Robot.jacobian_body_dot(q, qd)
+                    Robot::DEFAULT.jacobian_body_dot(q, qd)
                 }
                 #[no_panic]
                 pub fn end_effector_pose(q: &Q) -> nalgebra::Isometry3<$s> {
-                    Robot.end_effector_pose(q)
+                    Robot::DEFAULT.end_effector_pose(q)
                 }
                 #[no_panic]
                 pub fn jacobian_space(q: &Q) -> SMatrix<$s, 6, $nv> {
-                    Robot.jacobian_space(q)
+                    Robot::DEFAULT.jacobian_space(q)
                 }
                 #[no_panic]
                 pub fn jacobian_body(q: &Q) -> SMatrix<$s, 6, $nv> {
-                    Robot.jacobian_body(q)
+                    Robot::DEFAULT.jacobian_body(q)
                 }
                 #[no_panic]
                 pub fn friction(qd: &V) -> V {
-                    Robot.friction(qd)
+                    Robot::DEFAULT.friction(qd)
                 }
                 #[no_panic]
                 pub fn coriolis_matrix(q: &Q, qd: &V) -> SMatrix<$s, $nv, $nv> {
-                    Robot.coriolis_matrix(q, qd)
+                    Robot::DEFAULT.coriolis_matrix(q, qd)
                 }
                 #[no_panic]
                 pub fn mass_matrix_and_bias(q: &Q, qd: &V) -> (SMatrix<$s, $nv, $nv>, V) {
-                    Robot.mass_matrix_and_bias(q, qd)
+                    Robot::DEFAULT.mass_matrix_and_bias(q, qd)
                 }
                 #[no_panic]
                 pub fn end_effector_forces(q: &Q, f: &SVector<$s, 6>) -> V {
-                    Robot.end_effector_forces(q, f)
+                    Robot::DEFAULT.end_effector_forces(q, f)
                 }
                 #[no_panic]
                 pub fn inverse_dynamics_with_tip(q: &Q, qd: &V, qdd: &V, f: &SVector<$s, 6>) -> V {
-                    Robot.inverse_dynamics_with_tip(q, qd, qdd, f)
+                    Robot::DEFAULT.inverse_dynamics_with_tip(q, qd, qdd, f)
                 }
                 #[no_panic]
                 pub fn forward_dynamics_with_tip(q: &Q, qd: &V, tau: &V, f: &SVector<$s, 6>) -> V {
-                    Robot.forward_dynamics_with_tip(q, qd, tau, f)
+                    Robot::DEFAULT.forward_dynamics_with_tip(q, qd, tau, f)
                 }
                 #[no_panic]
                 pub fn task_space_mass_matrix(q: &Q) -> Option<SMatrix<$s, 6, 6>> {
-                    Robot.task_space_mass_matrix(q)
+                    Robot::DEFAULT.task_space_mass_matrix(q)
                 }
                 #[no_panic]
                 pub fn task_space_bias(q: &Q, qd: &V) -> Option<SVector<$s, 6>> {
-                    Robot.task_space_bias(q, qd)
+                    Robot::DEFAULT.task_space_bias(q, qd)
                 }
                 #[no_panic]
                 pub fn constrained_forward_dynamics_1(
@@ -125,7 +125,7 @@ mod release {
                     a: &SMatrix<$s, 1, $nv>,
                     adq: &SVector<$s, 1>,
                 ) -> Option<(V, SVector<$s, 1>)> {
-                    Robot.constrained_forward_dynamics(q, qd, tau, a, adq)
+                    Robot::DEFAULT.constrained_forward_dynamics(q, qd, tau, a, adq)
                 }
                 #[no_panic]
                 pub fn constrained_forward_dynamics_3(
@@ -135,7 +135,7 @@ mod release {
                     a: &SMatrix<$s, 3, $nv>,
                     adq: &SVector<$s, 3>,
                 ) -> Option<(V, SVector<$s, 3>)> {
-                    Robot.constrained_forward_dynamics(q, qd, tau, a, adq)
+                    Robot::DEFAULT.constrained_forward_dynamics(q, qd, tau, a, adq)
                 }
                 pub fn extras() -> $s {
                     let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
@@ -193,19 +193,19 @@ mod release {
                 type Q = SVector<$s, $nq>;
                 #[no_panic]
                 pub fn frame_poses(q: &Q) -> [nalgebra::Isometry3<$s>; Robot::FRAME_NAMES.len()] {
-                    Robot.frame_poses(q)
+                    Robot::DEFAULT.frame_poses(q)
                 }
                 #[no_panic]
                 pub fn frame_jacobians_space(
                     q: &Q,
                 ) -> [SMatrix<$s, 6, $nv>; Robot::FRAME_NAMES.len()] {
-                    Robot.frame_jacobians_space(q)
+                    Robot::DEFAULT.frame_jacobians_space(q)
                 }
                 #[no_panic]
                 pub fn frame_jacobians_body(
                     q: &Q,
                 ) -> [SMatrix<$s, 6, $nv>; Robot::FRAME_NAMES.len()] {
-                    Robot.frame_jacobians_body(q)
+                    Robot::DEFAULT.frame_jacobians_body(q)
                 }
                 pub fn call() -> $s {
                     let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);
@@ -231,27 +231,27 @@ mod release {
                 type M = SMatrix<$s, $nv, $nv>;
                 #[no_panic]
                 pub fn inverse_dynamics_derivatives(q: &Q, qd: &V, qdd: &V) -> (M, M) {
-                    Robot.inverse_dynamics_derivatives(q, qd, qdd)
+                    Robot::DEFAULT.inverse_dynamics_derivatives(q, qd, qdd)
                 }
                 #[no_panic]
                 pub fn inverse_dynamics_with_derivatives(q: &Q, qd: &V, qdd: &V) -> (V, M, M) {
-                    Robot.inverse_dynamics_with_derivatives(q, qd, qdd)
+                    Robot::DEFAULT.inverse_dynamics_with_derivatives(q, qd, qdd)
                 }
                 #[no_panic]
                 pub fn forward_dynamics_derivatives(q: &Q, qd: &V, tau: &V) -> (M, M, M) {
-                    Robot.forward_dynamics_derivatives(q, qd, tau)
+                    Robot::DEFAULT.forward_dynamics_derivatives(q, qd, tau)
                 }
                 #[no_panic]
                 pub fn forward_dynamics_with_derivatives(q: &Q, qd: &V, tau: &V) -> (V, M, M, M) {
-                    Robot.forward_dynamics_with_derivatives(q, qd, tau)
+                    Robot::DEFAULT.forward_dynamics_with_derivatives(q, qd, tau)
                 }
                 #[no_panic]
                 pub fn mass_matrix_inverse(q: &Q) -> M {
-                    Robot.mass_matrix_inverse(q)
+                    Robot::DEFAULT.mass_matrix_inverse(q)
                 }
                 #[no_panic]
                 pub fn gravity_derivative(q: &Q) -> M {
-                    Robot.gravity_derivative(q)
+                    Robot::DEFAULT.gravity_derivative(q)
                 }
                 pub fn call() -> $s {
                     let q = Q::from_fn(|i, _| 0.1 * i as $s + 0.05);

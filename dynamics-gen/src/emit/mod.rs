@@ -331,6 +331,19 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         ]
     };
     let limits = limit_consts(&robot, options.scalar, n_usize);
+    let gravity_const = if robot.runtime.gravity {
+        let g = robot
+            .gravity
+            .iter()
+            .map(|&x| literal::float_tokens(x, options.scalar));
+        quote! {
+            /// The robot file's gravity vector in {0} (m/s²): the default of the run-time
+            /// field `gravity`.
+            pub const DEFAULT_GRAVITY: [#scalar; 3] = [#(#g),*];
+        }
+    } else {
+        quote!()
+    };
     let allow = allow_attrs();
     let mul_add_fn = if options.no_std {
         quote!()
@@ -362,6 +375,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             /// The joint names, in the order of every vector and matrix index.
             pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
             #limits
+            #gravity_const
 
             /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
             /// by joint types).
@@ -508,7 +522,13 @@ pub fn struct_parts(
         return (
             quote!(#[derive(Clone, Copy, Debug, Default)]),
             quote!(;),
-            quote!(),
+            quote! {
+                impl #ident {
+                    /// The robot (as `Default::default()`, for `const` and `static` items; with
+                    /// run-time parameters it holds their defaults).
+                    pub const DEFAULT: Self = Self;
+                }
+            },
         );
     }
     let defaults = expand::parameters::defaults(robot);

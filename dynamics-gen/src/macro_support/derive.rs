@@ -49,6 +49,34 @@ fn number_value(
     })
 }
 
+/// With `runtime_parameters` the generated methods read the struct's fields `gravity`,
+/// `payload_mass`, `payload_com` and `payload_inertia` (the fields `robot!` and generated
+/// files declare): a struct without them gets one error naming what to declare.
+fn check_runtime_fields(input: &syn::DeriveInput, errors: &mut Errors) {
+    let names: Vec<String> = match &input.data {
+        syn::Data::Struct(s) => s
+            .fields
+            .iter()
+            .filter_map(|f| f.ident.as_ref().map(ToString::to_string))
+            .collect(),
+        _ => Vec::new(),
+    };
+    let missing: Vec<&str> = crate::expand::parameters::FIELDS
+        .iter()
+        .map(|f| f.name)
+        .filter(|n| !names.iter().any(|x| x == n))
+        .collect();
+    if !missing.is_empty() {
+        errors.at(
+            &input.ident,
+            format!(
+                "with `runtime_parameters` the generated methods read the struct's fields: declare {} (gravity: [S; 3] in m/s², payload_mass: S in kg, payload_com: [S; 3] in m, payload_inertia: [S; 6] in kg·m², S the scalar type; the generated `DEFAULT_GRAVITY` holds the robot file's gravity), or use `robot!` or a generated file, which declare them and their `Default`",
+                missing.iter().map(|m| format!("`{m}`")).collect::<Vec<_>>().join(", ")
+            ),
+        );
+    }
+}
+
 /// Reads every `#[dynamics(..)]` attribute of `input`; errors are accumulated.
 pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
     let mut attr = Attr {
@@ -196,9 +224,17 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                         ),
                     }
                 }
+                "runtime_parameters" => {
+                    attr.options.runtime_parameters = true;
+                    check_runtime_fields(input, errors);
+                }
+                "payload_link" => {
+                    let lit: syn::LitStr = meta.value()?.parse()?;
+                    attr.options.payload_link = Some(lit.value());
+                }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, snap_angles = TOL, method = \"newton_euler\" | \"lagrangian\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, snap_angles = TOL, method = \"newton_euler\" | \"lagrangian\", runtime_parameters, payload_link = \"LINK\"",
                         meta.path.to_token_stream()
                     )))
                 }

@@ -43,8 +43,19 @@ pub struct Head {
 pub struct Inline {
     /// `#[attrs] VIS struct NAME;`.
     pub head: Head,
-    /// The robot as written and the span of every field, and the `method` key.
-    pub robot: Result<(Robot, crate::Method), syn::Error>,
+    /// The robot as written and the span of every field, and the generation options.
+    pub robot: Result<(Robot, Generation), syn::Error>,
+}
+
+/// The keys of `robot!` that are generation options rather than parts of the robot.
+#[derive(Clone, Debug, Default)]
+pub struct Generation {
+    /// `method: newton_euler | lagrangian`.
+    pub method: crate::Method,
+    /// `runtime_parameters: true`.
+    pub runtime_parameters: bool,
+    /// `payload_link: LINK` (checked against the robot's links).
+    pub payload_link: Option<String>,
 }
 
 /// One item of a block: `key: value` or `keyword ARGS { … }`.
@@ -95,7 +106,7 @@ pub fn parse(input: TokenStream) -> syn::Result<Inline> {
 }
 
 /// Reads the items after the head and builds the robot.
-fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, crate::Method), syn::Error> {
+fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, Generation), syn::Error> {
     let mut errors = Errors::default();
     let mut spans = SpanMap::new(ident.to_token_stream());
     let items = parse_items(rest, &mut errors);
@@ -106,7 +117,9 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, crate::Method), syn
     let mut base: Option<Table> = None;
     let mut seen = Vec::new();
     let mut early = Vec::new();
-    let mut method = crate::Method::default();
+    let mut generation = Generation::default();
+    let mut payload_tokens: Option<TokenStream> = None;
+    let mut runtime_tokens: Option<TokenStream> = None;
     for item in items {
         match item {
             Item::Entry(e) => {
@@ -120,12 +133,29 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, crate::Method), syn
                     // A generation option, not part of the robot: `newton_euler` or `lagrangian`.
                     if let Some(Toml::String(s)) = v {
                         match s.parse() {
-                            Ok(m) => method = m,
+                            Ok(m) => generation.method = m,
                             Err(_) => errors.at(
                                 &e.tokens,
                                 format!("unknown method `{s}`: the methods are `newton_euler` (the default) and `lagrangian`"),
                             ),
                         }
+                    }
+                } else if e.key == "runtime_parameters" {
+                    match v {
+                        Some(Toml::String(s)) if s == "true" || s == "false" => {
+                            generation.runtime_parameters = s == "true";
+                            runtime_tokens = Some(e.tokens.clone());
+                        }
+                        Some(_) => errors.at(
+                            &e.tokens,
+                            "`runtime_parameters` is `true` (gravity and a payload become fields of the struct, read at run time) or `false` (the default)",
+                        ),
+                        None => {}
+                    }
+                } else if e.key == "payload_link" {
+                    if let Some(Toml::String(s)) = v {
+                        generation.payload_link = Some(s);
+                        payload_tokens = Some(e.tokens.clone());
                     }
                 } else if let Some(v) = v {
                     doc.insert(e.key.to_string(), v);
@@ -206,7 +236,25 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, crate::Method), syn
     if let Err(e) = robot.validate() {
         return Err(model_error(&spans, &e, &early, &text));
     }
-    Ok((robot, method))
+    if let (Some(link), Some(tokens)) = (&generation.payload_link, &payload_tokens) {
+        if !generation.runtime_parameters {
+            return Err(syn::Error::new_spanned(
+                runtime_tokens.as_ref().unwrap_or(tokens),
+                "`payload_link` needs `runtime_parameters: true` (the payload is a run-time parameter)",
+            ));
+        }
+        if !robot.links.iter().any(|l| l.name == *link) {
+            let names: Vec<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
+            return Err(syn::Error::new_spanned(
+                tokens,
+                format!(
+                    "no moving link is called `{link}`: the payload link is one of {}",
+                    names.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok((robot, generation))
 }
 
 /// The span map, and the base's name: the model names the base as a link without index,

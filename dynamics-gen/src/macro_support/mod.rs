@@ -129,7 +129,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         #vis struct #ident;
     };
-    let (robot, method) = match parsed.robot {
+    let (robot, generation) = match parsed.robot {
         Ok(r) => r,
         Err(e) => {
             let errors = e.into_compile_error();
@@ -138,11 +138,22 @@ pub fn robot(input: TokenStream) -> TokenStream {
     };
     let options = Options {
         name: Some(ident.to_string()),
-        method,
+        method: generation.method,
+        runtime_parameters: generation.runtime_parameters,
+        payload_link: generation.payload_link,
         ..Options::default()
     };
     match crate::generate_impl(&robot, &options) {
         Ok(g) => {
+            // The struct: unit, or with the run-time parameters' fields.
+            let (derives, fields, default_impl) =
+                crate::emit::struct_parts(&g.robot, ident, options.scalar);
+            let stub = quote! {
+                #(#attrs)*
+                #derives
+                #vis struct #ident #fields
+                #default_impl
+            };
             let impl_block = g.impl_block;
             let has_doc = attrs.iter().any(|a| a.path().is_ident("doc"));
             if has_doc {

@@ -43,8 +43,11 @@ pub const ROBOT_KEYS: &[(&str, Type)] = &[
     ("name", Type::Name),
     ("description", Type::Name),
     ("gravity", Type::Nums),
-    // Not a TOML key: how the dynamics are derived (`newton_euler` or `lagrangian`).
+    // Not TOML keys but generation options: how the dynamics are derived (`newton_euler` or
+    // `lagrangian`), run-time gravity and payload (`true`), the payload's link.
     ("method", Type::Name),
+    ("runtime_parameters", Type::Name),
+    ("payload_link", Type::Name),
 ];
 
 /// Keys of a joint (the `[[joint]]` table).

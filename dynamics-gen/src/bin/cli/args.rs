@@ -96,6 +96,12 @@ pub struct StatsArgs {
     /// How the dynamics are derived, as for `generate`.
     #[arg(long, default_value = "newton_euler", value_parser = parse_method)]
     pub method: Method,
+    /// Count the code with run-time gravity and payload, as for `generate`.
+    #[arg(long)]
+    pub runtime_parameters: bool,
+    /// The payload's link, as for `generate`.
+    #[arg(long, value_name = "LINK", requires = "runtime_parameters")]
+    pub payload_link: Option<String>,
 }
 
 /// Arguments of `equations`.

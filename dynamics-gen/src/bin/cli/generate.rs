@@ -134,6 +134,8 @@ pub fn stats(stats_args: &StatsArgs) -> Result<(), String> {
     let options = Options {
         load: args.load_options(),
         method: stats_args.method,
+        runtime_parameters: stats_args.runtime_parameters,
+        payload_link: stats_args.payload_link.clone(),
         ..Options::default()
     };
     let stats = robot_stats(&robot, &options).map_err(|e| e.to_string())?;
