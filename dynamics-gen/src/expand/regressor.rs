@@ -35,6 +35,13 @@
 //! state (`‖y‖ ≤ ZERO_TOLERANCE · max ‖y‖`: parameters with no effect on τ, such as the
 //! first link's mass on a fixed base) are dropped with no regrouping. β's entries below
 //! [`BETA_ZERO`] of the largest are exact zeros.
+//!
+//! Run-time parameters ([`super::parameters`]): with run-time gravity `Y` reads the gravity
+//! leaves, and each sample state of the reduction draws its own random gravity vector, so
+//! the base parameters hold for every gravity, not only the file's direction (which can
+//! hide a parameter, e.g. behind a vertical first axis). A run-time payload has no column of
+//! its own: it is part of its link's parameters, and `inertial_parameters` adds its ten
+//! standard parameters to the link's.
 
 use super::frames;
 use super::rnea::{self, LinkForce};
