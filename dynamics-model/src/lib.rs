@@ -76,6 +76,7 @@ pub mod error;
 pub mod inertia;
 pub mod lie;
 pub mod mimic;
+pub mod parameters;
 pub mod random;
 pub mod robot;
 pub mod validate;

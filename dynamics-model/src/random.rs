@@ -171,6 +171,7 @@ pub fn random_chain(seed: u64, spec: ChainSpec) -> Robot {
         frames: Vec::new(),
         gravity,
         runtime: crate::RuntimeParameters::default(),
+        parameters: Default::default(),
     }
 }
 
@@ -243,6 +244,7 @@ pub fn random_tree(seed: u64, spec: TreeSpec) -> Robot {
         frames: Vec::new(),
         gravity,
         runtime: crate::RuntimeParameters::default(),
+        parameters: Default::default(),
     }
 }
 

@@ -181,6 +181,9 @@ pub struct Robot {
     /// The quantities that generated code reads from its struct at run time instead of
     /// folding them in (none by default).
     pub runtime: RuntimeParameters,
+    /// The named parameters of the file and the fields written with them (empty unless a
+    /// TOML file declares `[parameters]`); the numbers above already hold their values.
+    pub parameters: crate::parameters::Parameters,
 }
 
 /// The quantities of a robot left open until run time: the generated struct carries them as
@@ -274,6 +277,7 @@ impl Robot {
             frames: Vec::new(),
             gravity,
             runtime: RuntimeParameters::default(),
+            parameters: Default::default(),
         })
     }
 

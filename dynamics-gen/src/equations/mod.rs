@@ -14,13 +14,16 @@
 //! 1e-11 of the entry's largest are rounding leftovers of cancellations and are dropped.
 //! Floating bases (whose orientation is a quaternion) are not printed.
 
+pub mod combine;
 pub mod number;
 pub mod poly;
+mod symbolic;
 
 use crate::error::Error;
 use crate::expand::spatial::{JointMotion, Spatial};
 use crate::expand::{self, base, input, kinematics, lagrangian, Q, QD, QDD};
 use crate::expr::{ExprGraph, ExprId, Input};
+use combine::{Factor, Term};
 use dynamics_model::lie::{adjoint, trans_inv};
 use dynamics_model::Robot;
 use number::magnitude;
@@ -54,7 +57,7 @@ impl std::str::FromStr for Format {
 }
 
 /// What to print.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EquationOptions {
     /// The format.
     pub format: Format,
@@ -64,6 +67,9 @@ pub struct EquationOptions {
     pub digits: usize,
     /// Which of the results to print.
     pub select: Select,
+    /// Named parameters of the robot ([`dynamics_model::parameters`]) kept as symbols; the
+    /// others take their values.
+    pub symbolic: Vec<String>,
 }
 
 /// Which of `M`, `c`, `C`, `g` to print (a general 7-joint arm's `c` and `C` run to tens
@@ -125,6 +131,7 @@ impl Default for EquationOptions {
             steps: false,
             digits: 6,
             select: Select::default(),
+            symbolic: Vec::new(),
         }
     }
 }
@@ -153,8 +160,13 @@ pub struct Quantity {
 const CLEAN: f64 = 1e-11;
 
 /// The closed-form quantities of `robot`: with `steps`, the derivation's, then `M`, `c`, `C`
-/// and `g`.
-pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quantity>, Error> {
+/// and `g`; the parameters named in `symbols` stay symbols ([`symbolic`]).
+pub fn quantities(
+    robot: &Robot,
+    steps: bool,
+    select: Select,
+    symbols: &[String],
+) -> Result<Vec<Quantity>, Error> {
     let refuse = |problem: &str, fix: &str| Error::Equations {
         robot: robot.name.clone(),
         problem: problem.into(),
@@ -178,6 +190,7 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
             Q => Some(Var::Q(i)),
             QD => Some(Var::Qd(i)),
             QDD => Some(Var::Qdd(i)),
+            symbolic::SYM => Some(Var::Param(i)),
             _ => None,
         }
     };
@@ -193,8 +206,14 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
     };
     let mut out = Vec::new();
     let n = robot.n_coordinates();
-    if steps {
-        let s = Steps::new(robot);
+    let (derivation, symbolic_results) = if symbols.is_empty() {
+        (steps.then(|| Steps::new(robot)), None)
+    } else {
+        let keep = symbolic::symbols(robot, symbols)?;
+        let (s, r) = symbolic::derive(robot, &keep)?;
+        (Some(s), Some(r))
+    };
+    if let (true, Some(s)) = (steps, &derivation) {
         let g = &s.graph;
         let twists: Vec<ExprId> = s
             .twists
@@ -273,7 +292,18 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
             });
         }
     }
-    let d = expand::expand_method(robot, expand::Method::Lagrangian);
+    let expanded;
+    let (graph, roots): (&ExprGraph, [&[ExprId]; 4]) = match (&derivation, &symbolic_results) {
+        (Some(s), Some(r)) => (&s.graph, [&r[0], &r[1], &r[2], &r[3]]),
+        _ => {
+            expanded = expand::expand_method(robot, expand::Method::Lagrangian);
+            let d = &expanded;
+            (
+                &d.graph,
+                [&d.mass_matrix, &d.coriolis, &d.coriolis_matrix, &d.gravity],
+            )
+        }
+    };
     // (printed, symbol, title, shape, expressions).
     type Printed<'a> = (bool, &'static str, &'a str, (usize, usize), &'a [ExprId]);
     let results: [Printed<'_>; 4] = [
@@ -282,28 +312,28 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
             "M",
             "the mass matrix M(θ) = ∂²K/∂θ̇² (symmetric: the entries on and above the diagonal)",
             (n, n),
-            &d.mass_matrix,
+            roots[0],
         ),
         (
             select.coriolis,
             "c",
             "the Coriolis and centrifugal terms c(θ, θ̇) = Ṁ θ̇ − ∂K/∂θ",
             (n, 1),
-            &d.coriolis,
+            roots[1],
         ),
         (
             select.coriolis_matrix,
             "C",
             "the Coriolis matrix C(θ, θ̇) of the Christoffel symbols, C θ̇ = c",
             (n, n),
-            &d.coriolis_matrix,
+            roots[2],
         ),
         (
             select.gravity,
             "g",
             "the gravity terms g(θ) = ∂P/∂θ",
             (n, 1),
-            &d.gravity,
+            roots[3],
         ),
     ];
     for (wanted, symbol, title, shape, roots) in results {
@@ -315,7 +345,7 @@ pub fn quantities(robot: &Robot, steps: bool, select: Select) -> Result<Vec<Quan
                 shape,
                 symmetric: symbol == "M",
                 tuple: None,
-                entries: to_polys(&d.graph, roots)?,
+                entries: to_polys(graph, roots)?,
             });
         }
     }
@@ -425,23 +455,31 @@ impl Steps {
 
 /// The equations of `robot`, printed.
 pub fn equations(robot: &Robot, options: &EquationOptions) -> Result<String, Error> {
-    let qs = quantities(robot, options.steps, options.select)?;
+    let qs = quantities(robot, options.steps, options.select, &options.symbolic)?;
     Ok(render(robot, &qs, options))
 }
 
-/// The order of terms: rate degree, then total degree (descending), then the monomial.
-fn term_order(a: &poly::Monomial, b: &poly::Monomial) -> std::cmp::Ordering {
-    let rate = |m: &poly::Monomial| -> u32 {
-        m.iter()
-            .filter(|(v, _)| matches!(v, Var::Qd(_) | Var::Qdd(_)))
+/// The order of terms: rate degree, then total degree in the joint variables (descending),
+/// then the factors.
+fn term_order(a: &Term, b: &Term) -> std::cmp::Ordering {
+    let rate = |t: &Term| -> u32 {
+        t.factors
+            .iter()
+            .filter(|(f, _)| matches!(f, Factor::Var(Var::Qd(_) | Var::Qdd(_))))
             .map(|(_, p)| p)
             .sum()
     };
-    let total = |m: &poly::Monomial| -> u32 { m.iter().map(|(_, p)| p).sum() };
+    let total = |t: &Term| -> u32 {
+        t.factors
+            .iter()
+            .filter(|(f, _)| !matches!(f, Factor::Var(Var::Param(_))))
+            .map(|(_, p)| p)
+            .sum()
+    };
     rate(b)
         .cmp(&rate(a))
         .then(total(b).cmp(&total(a)))
-        .then(a.cmp(b))
+        .then(a.factors.cmp(&b.factors))
 }
 
 const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
@@ -454,13 +492,14 @@ fn superscript(p: u32) -> String {
 }
 
 /// One factor `v^p` in text: `θ̇2²`, `sin²θ2`, `θ3`.
-fn factor_text(v: Var, p: u32) -> String {
+fn factor_text(v: Var, p: u32, names: &[String]) -> String {
     let pow = if p == 1 {
         String::new()
     } else {
         superscript(p)
     };
     match v {
+        Var::Param(i) => format!("{}{pow}", names[i as usize]),
         Var::Qd(i) => format!("θ̇{}{pow}", i + 1),
         Var::Qdd(i) => format!("θ̈{}{pow}", i + 1),
         Var::Q(i) => format!("θ{}{pow}", i + 1),
@@ -471,14 +510,64 @@ fn factor_text(v: Var, p: u32) -> String {
     }
 }
 
+/// `θ1+θ2−θ3` (text) or `\\theta_{1}+\\theta_{2}-\\theta_{3}` (LaTeX).
+fn angle_string(a: &combine::Angle, latex: bool) -> String {
+    let mut out = String::new();
+    for (k, &(i, s)) in a.iter().enumerate() {
+        match (k, s < 0, latex) {
+            (_, true, false) => out.push('−'),
+            (_, true, true) => out.push('-'),
+            (0, false, _) => {}
+            (_, false, _) => out.push('+'),
+        }
+        if latex {
+            out.push_str(&format!("\\theta_{{{}}}", i + 1));
+        } else {
+            out.push_str(&format!("θ{}", i + 1));
+        }
+    }
+    out
+}
+
+/// One printed factor: a variable, or the sine or cosine of an angle.
+fn factor_string(f: &Factor, p: u32, latex: bool, names: &[String]) -> String {
+    match f {
+        Factor::Var(v) if latex => factor_latex(*v, p, names),
+        Factor::Var(v) => factor_text(*v, p, names),
+        Factor::Trig(cos, a) if a.len() == 1 && a[0].1 > 0 => {
+            let v = if *cos {
+                Var::Cos(a[0].0)
+            } else {
+                Var::Sin(a[0].0)
+            };
+            if latex {
+                factor_latex(v, p, names)
+            } else {
+                factor_text(v, p, names)
+            }
+        }
+        Factor::Trig(cos, a) => {
+            let name = if *cos { "cos" } else { "sin" };
+            let angle = angle_string(a, latex);
+            match (latex, p) {
+                (false, 1) => format!("{name}({angle})"),
+                (false, p) => format!("{name}{}({angle})", superscript(p)),
+                (true, 1) => format!("\\{name}({angle})"),
+                (true, p) => format!("\\{name}^{{{p}}}({angle})"),
+            }
+        }
+    }
+}
+
 /// One factor in LaTeX.
-fn factor_latex(v: Var, p: u32) -> String {
+fn factor_latex(v: Var, p: u32, names: &[String]) -> String {
     let pow = if p == 1 {
         String::new()
     } else {
         format!("^{{{p}}}")
     };
     match v {
+        Var::Param(i) => format!("{}{pow}", latex_name(&names[i as usize])),
         Var::Qd(i) => format!("\\dot\\theta_{{{}}}{pow}", i + 1),
         Var::Qdd(i) => format!("\\ddot\\theta_{{{}}}{pow}", i + 1),
         Var::Q(i) => format!("\\theta_{{{}}}{pow}", i + 1),
@@ -487,15 +576,39 @@ fn factor_latex(v: Var, p: u32) -> String {
     }
 }
 
-/// A polynomial in text or LaTeX.
-pub fn poly_string(p: &Poly, latex: bool, digits: usize) -> String {
+/// A parameter's name in LaTeX: trailing digits as a subscript (`L1` → `L_{1}`), `_` escaped.
+fn latex_name(name: &str) -> String {
+    let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+    let digits = &name[stem.len()..];
+    let stem = stem.replace('_', "\\_");
+    let stem = if stem.chars().count() > 1 {
+        format!("\\mathit{{{stem}}}")
+    } else {
+        stem
+    };
+    if digits.is_empty() {
+        format!("{{{stem}}}")
+    } else {
+        format!("{{{stem}_{{{digits}}}}}")
+    }
+}
+
+/// A polynomial in text or LaTeX; `names` are the robot's parameters ([`Var::Param`]).
+pub fn poly_string(p: &Poly, latex: bool, digits: usize, names: &[String]) -> String {
     if p.terms.is_empty() {
         return "0".into();
     }
-    let mut terms: Vec<(&poly::Monomial, f64)> = p.terms.iter().map(|(m, &c)| (m, c)).collect();
-    terms.sort_by(|a, b| term_order(a.0, b.0));
+    let mut terms = combine::combined(p);
+    terms.sort_by(term_order);
     let mut out = String::new();
-    for (k, (m, c)) in terms.into_iter().enumerate() {
+    for (
+        k,
+        Term {
+            coef: c,
+            factors: m,
+        },
+    ) in terms.into_iter().enumerate()
+    {
         let minus = c < 0.0;
         match (k, minus, latex) {
             (0, true, false) => out.push('−'),
@@ -510,12 +623,8 @@ pub fn poly_string(p: &Poly, latex: bool, digits: usize) -> String {
         if !mag.is_one() || m.is_empty() {
             parts.push(if latex { mag.latex() } else { mag.text() });
         }
-        for &(v, pw) in m.iter() {
-            parts.push(if latex {
-                factor_latex(v, pw)
-            } else {
-                factor_text(v, pw)
-            });
+        for (f, pw) in &m {
+            parts.push(factor_string(f, *pw, latex, names));
         }
         out.push_str(&parts.join(if latex { " \\, " } else { " " }));
     }
@@ -546,14 +655,50 @@ fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
         .enumerate()
         .map(|(i, n)| format!("θ{} = {n}", i + 1))
         .collect();
-    let g = robot.gravity;
+    let params = &robot.parameters;
+    let kept: Vec<usize> = options
+        .symbolic
+        .iter()
+        .filter_map(|n| params.index(n))
+        .collect();
+    let gravity: Vec<String> = match &params.gravity {
+        Some(es) if !kept.is_empty() => es
+            .iter()
+            .map(|e| {
+                // The kept parameters by name, the others by value.
+                let mut names = params.names.clone();
+                for (i, n) in names.iter_mut().enumerate() {
+                    if !kept.contains(&i) {
+                        *n = format!("{}", params.values[i]);
+                    }
+                }
+                e.to_text(&names)
+            })
+            .collect(),
+        _ => robot.gravity.iter().map(|x| x.to_string()).collect(),
+    };
+    let symbols = if kept.is_empty() {
+        String::new()
+    } else {
+        let values: Vec<String> = (0..params.names.len())
+            .filter(|i| !kept.contains(i))
+            .map(|i| format!("{} = {}", params.names[i], params.values[i]))
+            .collect();
+        format!(
+            "; symbols {}{}",
+            options.symbolic.join(", "),
+            if values.is_empty() {
+                String::new()
+            } else {
+                format!(" (and {})", values.join(", "))
+            }
+        )
+    };
     let header = format!(
-        "Equations of motion of {} (Lagrangian route), τ = M(θ) θ̈ + c(θ, θ̇) + g(θ); {}; gravity ({}, {}, {}) m/s²; SI units (rad, m, kg, s).",
+        "Equations of motion of {} (Lagrangian route), τ = M(θ) θ̈ + c(θ, θ̇) + g(θ); {}; gravity ({}) m/s²{symbols}; SI units (rad, m, kg, s).",
         crate::emit::text::inert(&robot.name),
         legend.join(", "),
-        g[0],
-        g[1],
-        g[2]
+        gravity.join(", "),
     );
     let mut out = String::new();
     let latex = options.format != Format::Text;
@@ -578,7 +723,7 @@ fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
             let parts: Vec<String> = q
                 .entries
                 .iter()
-                .map(|p| poly_string(p, latex, options.digits))
+                .map(|p| poly_string(p, latex, options.digits, &robot.parameters.names))
                 .collect();
             lines.push(if latex {
                 format!(
@@ -596,7 +741,12 @@ fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
                     continue;
                 }
                 let idx = indices(q.shape, r, c);
-                let body = poly_string(&q.entries[r * cols + c], latex, options.digits);
+                let body = poly_string(
+                    &q.entries[r * cols + c],
+                    latex,
+                    options.digits,
+                    &robot.parameters.names,
+                );
                 let line = if latex {
                     let sym = if idx.is_empty() {
                         q.latex.to_string()

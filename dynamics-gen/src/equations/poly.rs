@@ -5,10 +5,12 @@
 use crate::expr::{ExprGraph, ExprId, Input, Node};
 use std::collections::BTreeMap;
 
-/// A variable of the polynomials. The order is the printing order inside a term: rates
-/// first, then positions, then the trigonometry.
+/// A variable of the polynomials. The order is the printing order inside a term: parameters
+/// first, then rates, then positions, then the trigonometry.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Var {
+    /// A named parameter kept as a symbol (index in the robot's parameters).
+    Param(u16),
     /// `θ̈_i` (index in ν̇).
     Qdd(u16),
     /// `θ̇_i` (index in ν).

@@ -539,7 +539,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
 /// columns of P are zero, and its base block gets the Euler–Poincaré term `−H(h_b)` of the
 /// body twist, `H(h) V = [ad_V]ᵀ h` with `h_b = p[0..6]` (see `dynamics_reference`'s
 /// `coriolis_matrix`), which keeps both properties.
-fn coriolis_matrix(
+pub(crate) fn coriolis_matrix(
     g: &mut ExprGraph,
     m: &[ExprId],
     m_dot: &[ExprId],

@@ -183,6 +183,7 @@ pub(crate) fn build(spec: RobotFile, file: &str) -> Result<Robot, Vec<Invalid>> 
         frames,
         gravity,
         runtime: crate::RuntimeParameters::default(),
+        parameters: Default::default(),
     })
 }
 

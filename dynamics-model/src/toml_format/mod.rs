@@ -198,6 +198,7 @@
 mod body;
 mod convert;
 mod locate;
+mod params;
 mod pose;
 mod schema;
 
@@ -209,6 +210,12 @@ use crate::robot::Robot;
 /// Schema-level problems are errors; the robot itself is not validated here (see the
 /// module docs; [`crate::load::from_str`] does both).
 pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
+    let (substituted, parameters) = match params::substitute(text) {
+        Err(errors) => return Err(ModelError::Invalid(errors).in_file(file)),
+        Ok(None) => (None, crate::parameters::Parameters::default()),
+        Ok(Some((text, parameters))) => (Some(text), parameters),
+    };
+    let text = substituted.as_deref().unwrap_or(text);
     let spec: schema::RobotFile = toml::from_str(text).map_err(|e| {
         let (line, column) = e
             .span()
@@ -226,7 +233,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Robot, ModelError> {
             message,
         }
     })?;
-    convert::build(spec, file).map_err(|errors| ModelError::Invalid(errors).in_file(file))
+    let mut robot =
+        convert::build(spec, file).map_err(|errors| ModelError::Invalid(errors).in_file(file))?;
+    robot.parameters = parameters;
+    Ok(robot)
 }
 
 /// The TOML parser's `message`, with the key named and a fix where the parser gives neither.

@@ -22,6 +22,10 @@ pub(crate) struct RobotFile {
     /// Gravity in {0} (3 numbers).
     #[serde(default)]
     pub gravity: Option<Vec<f64>>,
+    /// `[parameters]`: already applied ([`super::params`]).
+    #[serde(default)]
+    #[allow(dead_code)]
+    pub parameters: Option<toml::Value>,
     /// The base `[base]`.
     #[serde(default)]
     pub base: Option<BaseSpec>,

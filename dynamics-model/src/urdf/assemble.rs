@@ -204,5 +204,6 @@ pub fn robot(
         frames,
         gravity: Vector3::from(DEFAULT_GRAVITY),
         runtime: crate::RuntimeParameters::default(),
+        parameters: Default::default(),
     })
 }

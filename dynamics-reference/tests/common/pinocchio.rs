@@ -95,6 +95,7 @@ pub fn robot_from_pinocchio(file: &Value) -> Robot {
         frames: Vec::new(),
         gravity: vec3(&file["gravity"]),
         runtime: dynamics_model::RuntimeParameters::default(),
+        parameters: Default::default(),
     };
     robot.validate().expect("the reference robot is valid");
     assert_eq!(robot.nq(), file["nq"].as_u64().unwrap() as usize);

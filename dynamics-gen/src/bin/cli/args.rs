@@ -126,6 +126,10 @@ pub struct EquationsArgs {
     /// c is the vector, C the matrix).
     #[arg(long, value_name = "M,c,C,g", default_value = "M,c,C,g", value_parser = parse_select)]
     pub only: dynamics_gen::equations::Select,
+    /// Keep these named parameters of the robot file (its `[parameters]` table) as symbols,
+    /// e.g. `--symbolic m1 m2 L1 L2`; the others take their values.
+    #[arg(long, num_args = 1.., value_name = "NAME")]
+    pub symbolic: Vec<String>,
 }
 
 /// Arguments of `eval`.

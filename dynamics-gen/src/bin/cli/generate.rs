@@ -166,6 +166,7 @@ pub fn equations(args: &EquationsArgs) -> Result<(), String> {
         steps: args.steps,
         digits: usize::from(args.digits),
         select: args.only,
+        symbolic: args.symbolic.clone(),
     };
     let text = dynamics_gen::equations::equations(&robot, &options).map_err(|e| e.to_string())?;
     super::print(&text)
