@@ -206,6 +206,29 @@ fn cases() -> Vec<Case> {
             edit(TOML, "mass = 2.0", "mass = [2.0"),
         ),
         toml("Wrong type", "mass = 2.0", "mass = \"two\""),
+        toml_text(
+            "Unknown parameter in an expression",
+            "two-joint robot with `[parameters] m1 = 1.0, L1 = 0.5` and `mass = \"m2\"`".into(),
+            edit(
+                &edit(
+                    TOML,
+                    "name = \"two\"\n",
+                    "name = \"two\"\n[parameters]\nm1 = 1.0\nL1 = 0.5\n",
+                ),
+                "mass = 1.0",
+                "mass = \"m2\"",
+            ),
+        ),
+        toml(
+            "Malformed expression",
+            "home = { xyz = [0, 0, 0.5] }",
+            "home = { xyz = [0, 0, \"0.5 *\"] }",
+        ),
+        toml(
+            "Parameter that is not a number",
+            "name = \"two\"\n",
+            "name = \"two\"\n[parameters]\nL1 = \"half\"\n",
+        ),
         toml("Missing field", "mass = 2.0\n", ""),
         toml("Duplicate field", "mass = 2.0", "mass = 2.0\nmass = 3.0"),
         toml("Unknown field", "mass = 2.0", "mas = 2.0"),
@@ -457,6 +480,10 @@ fn cases() -> Vec<Case> {
             TOML,
         ),
         args("Unknown command", &["generat", "ur5"]),
+        args(
+            "Symbolic parameter the robot does not declare",
+            &["equations", "planar2r", "--symbolic", "m3"],
+        ),
         args("Unknown function", &["generate", "ur5", "--functions", "mass_matrx"]),
         args("Gravity not three numbers", &["generate", "ur5", "--gravity", "0,-9.81"]),
         args("Lock of an unknown joint", &["generate", "ur5", "--lock", "wrist_9_joint=0"]),

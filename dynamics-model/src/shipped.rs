@@ -46,10 +46,17 @@ pub const ROBOTS: &[Shipped] = &[
         format: Format::Toml,
         text: include_str!("../../robots/rand7.toml"),
     },
+    // The planar 2R arm of §8.1.1 with named parameters m1, m2, L1, L2, g.
+    Shipped {
+        name: "planar2r",
+        file: "robots/planar2r.toml",
+        format: Format::Toml,
+        text: include_str!("../../robots/planar2r.toml"),
+    },
 ];
 
 /// The names of the shipped robots.
-pub const NAMES: &[&str] = &["ur5", "mr_ur5", "pendulum", "rand7"];
+pub const NAMES: &[&str] = &["ur5", "mr_ur5", "pendulum", "rand7", "planar2r"];
 
 /// The shipped robot called `name`.
 pub fn get(name: &str) -> Option<Shipped> {

@@ -78,12 +78,17 @@ pub(crate) fn substitute(text: &str) -> Result<Option<(String, Parameters)>, Vec
         }
     }
     let mut exprs: BTreeMap<Path, Expr> = BTreeMap::new();
+    let mut bad: Vec<(Path, String, String)> = Vec::new();
     for (key, item) in doc.as_table_mut().iter_mut() {
         if key.get() == "parameters" {
             continue;
         }
         let mut path = vec![Seg::Key(key.get().to_string())];
-        walk_item(item, &mut path, &names, &values, &mut exprs, &mut errors);
+        walk_item(item, &mut path, &names, &values, &mut exprs, &mut bad);
+    }
+    for (path, problem, fix) in bad {
+        let (subject, field) = subject_of(&doc, &path);
+        errors.push(Invalid::new(subject, field, problem, fix));
     }
     if !errors.is_empty() {
         return Err(errors);
@@ -106,7 +111,7 @@ fn walk_item(
     names: &[String],
     values: &[f64],
     exprs: &mut BTreeMap<Path, Expr>,
-    errors: &mut Vec<Invalid>,
+    errors: &mut Vec<(Path, String, String)>,
 ) {
     match item {
         Item::Value(v) => walk_value(v, path, names, values, exprs, errors),
@@ -138,7 +143,7 @@ fn walk_value(
     names: &[String],
     values: &[f64],
     exprs: &mut BTreeMap<Path, Expr>,
-    errors: &mut Vec<Invalid>,
+    errors: &mut Vec<(Path, String, String)>,
 ) {
     match v {
         Value::String(s) => {
@@ -154,11 +159,10 @@ fn walk_value(
                     *v.decor_mut() = decor;
                     exprs.insert(path.clone(), e);
                 }
-                Err(why) => errors.push(Invalid::new(
-                    Subject::Robot,
-                    display(path),
+                Err(why) => errors.push((
+                    path.clone(),
                     format!("`\"{text}\"` is not a number or an expression over the parameters: {why}"),
-                    "write a number, or an expression such as \"L1/2\" or \"m1*L1^2/12\" over the parameters declared in `[parameters]`",
+                    "write a number, or an expression such as \"L1/2\" or \"m1*L1^2/12\" over the parameters declared in `[parameters]`".into(),
                 )),
             }
         }
@@ -195,6 +199,41 @@ fn display(path: &[Seg]) -> String {
         }
     }
     s
+}
+
+/// The link, joint or frame a path is in, and the field's path inside it.
+fn subject_of(doc: &DocumentMut, path: &[Seg]) -> (Subject, String) {
+    let name = |p: &[Seg]| -> Option<String> {
+        let mut p = p.to_vec();
+        p.push(key("name"));
+        match lookup(doc, &p)? {
+            ItemRef::Item(Item::Value(v)) | ItemRef::Value(v) => v.as_str().map(str::to_string),
+            _ => None,
+        }
+    };
+    let unnamed = || "(unnamed)".to_string();
+    match path {
+        [Seg::Key(j), Seg::Index(i), Seg::Key(l), rest @ ..] if j == "joint" && l == "link" => (
+            Subject::Link {
+                index: Some(*i),
+                name: name(&path[..3]).unwrap_or_else(unnamed),
+            },
+            display(rest),
+        ),
+        [Seg::Key(j), Seg::Index(i), rest @ ..] if j == "joint" => (
+            Subject::Joint {
+                index: Some(*i),
+                name: name(&path[..2]).unwrap_or_else(unnamed),
+            },
+            display(rest),
+        ),
+        [Seg::Key(f), Seg::Index(_), rest @ ..] if f == "frame" => (
+            Subject::Frame(name(&path[..2]).unwrap_or_else(unnamed)),
+            display(rest),
+        ),
+        [Seg::Key(e), rest @ ..] if e == "end_effector" => (Subject::EndEffector, display(rest)),
+        _ => (Subject::Robot, display(path)),
+    }
 }
 
 fn key(k: &str) -> Seg {
