@@ -643,6 +643,33 @@ fn indices((rows, cols): (usize, usize), r: usize, c: usize) -> String {
     }
 }
 
+/// Terms on one line of a LaTeX equation: a line wider than TeX's largest dimension
+/// (16384 pt) is a fatal error, and a general arm's entries run to thousands of terms.
+const TERMS_PER_LINE: usize = 6;
+
+/// A LaTeX polynomial cut into lines of `per_line` terms, each after the first starting
+/// with its sign.
+fn wrap_latex(body: &str, per_line: usize) -> Vec<String> {
+    let mut terms: Vec<&str> = Vec::new();
+    let mut start = 0;
+    let bytes = body.as_bytes();
+    let mut i = 1;
+    while i + 2 < bytes.len() {
+        if bytes[i] == b' '
+            && (bytes[i + 1] == b'+' || bytes[i + 1] == b'-')
+            && bytes[i + 2] == b' '
+        {
+            terms.push(&body[start..i]);
+            start = i + 1;
+            i += 3;
+        } else {
+            i += 1;
+        }
+    }
+    terms.push(&body[start..]);
+    terms.chunks(per_line).map(|c| c.join(" ")).collect()
+}
+
 fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
     let names: Vec<String> = robot
         .joints
@@ -753,7 +780,18 @@ fn render(robot: &Robot, qs: &[Quantity], options: &EquationOptions) -> String {
                     } else {
                         format!("{}_{{{idx}}}", q.latex)
                     };
-                    format!("{sym} &= {body}")
+                    wrap_latex(&body, TERMS_PER_LINE)
+                        .iter()
+                        .enumerate()
+                        .map(|(k, part)| {
+                            if k == 0 {
+                                format!("{sym} &= {part}")
+                            } else {
+                                format!("&\\quad {part}")
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join(" \\\\\n")
                 } else {
                     format!("  {}{idx} = {body}", q.text)
                 };
