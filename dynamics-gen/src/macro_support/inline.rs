@@ -834,9 +834,43 @@ fn base_table(b: Block, spans: &mut SpanMap, errors: &mut Errors) -> Table {
 /// A checked value of type `ty` as TOML (`None` after reporting an error).
 fn to_toml(v: &Value, ty: Type, errors: &mut Errors) -> Option<Toml> {
     let floats = |xs: Vec<f64>| Toml::Array(xs.into_iter().map(Toml::Float).collect());
+    // A string where a number goes is an expression over the `parameters`, which the TOML
+    // loader evaluates (`dynamics_model::parameters`).
+    let expression = |v: &Value| match &v.kind {
+        Kind::Str(s) => Some(Toml::String(s.clone())),
+        _ => None,
+    };
     match ty {
-        Type::Num => v.number(errors).map(Toml::Float),
-        Type::Nums => v.numbers(errors).map(floats),
+        Type::Num => expression(v).or_else(|| v.number(errors).map(Toml::Float)),
+        Type::Nums => match &v.kind {
+            Kind::Array(items) if items.iter().any(|x| matches!(x.kind, Kind::Str(_))) => {
+                let xs: Vec<Option<Toml>> = items
+                    .iter()
+                    .map(|x| expression(x).or_else(|| x.number(errors).map(Toml::Float)))
+                    .collect();
+                xs.into_iter().collect::<Option<Vec<_>>>().map(Toml::Array)
+            }
+            _ => v.numbers(errors).map(floats),
+        },
+        Type::Params => match &v.kind {
+            Kind::Table(entries) => {
+                let mut t = Table::new();
+                for e in entries {
+                    if let Some(x) = e.value.number(errors) {
+                        t.insert(e.key.to_string(), Toml::Float(x));
+                    }
+                }
+                Some(Toml::Table(t))
+            }
+            Kind::Error => None,
+            _ => {
+                errors.at(
+                    &v.tokens,
+                    format!("expected {}, found {}", ty.example(), v.describe()),
+                );
+                None
+            }
+        },
         Type::Matrix => v
             .matrix(errors)
             .map(|rows| Toml::Array(rows.into_iter().map(floats).collect())),

@@ -18,6 +18,9 @@
 //!     pub struct Pendulum;           // the struct to define (any visibility, doc comments)
 //!     name: "pendulum",              // optional (default: the struct's name)
 //!     gravity: [0, 0, -10],          // optional, in {0}, m/s²; default [0, 0, -9.81]
+//!     // parameters: { m1: 2.0, L1: 1.0 },  // optional named parameters, as TOML's
+//!     //                             // `[parameters]`: a string where a number goes is an
+//!     //                             // expression over them (`mass: "m1"`, `xyz: ["L1/2", 0, 0]`)
 //!     method: lagrangian,            // optional: how the dynamics are derived, `newton_euler`
 //!                                    // (default) or `lagrangian`; the same API either way
 //!

@@ -20,20 +20,23 @@ pub enum Type {
     Name,
     /// `{ joint: LEADER, multiplier: m, offset: o }`.
     Mimic,
+    /// Named parameters: `{ m1: 2.0, L1: 1.0 }`.
+    Params,
 }
 
 impl Type {
     /// How to write a value of this type, for messages.
     pub fn example(self) -> &'static str {
         match self {
-            Type::Num => "a number",
-            Type::Nums => "a list of numbers `[a, b, …]`",
+            Type::Num => "a number (or a string expression over the `parameters`, `\"L1/2\"`)",
+            Type::Nums => "a list of numbers `[a, b, …]` (entries may be string expressions over the `parameters`)",
             Type::Matrix => "a matrix `[[…], …]` (rows)",
             Type::Pose => "a pose: `{ xyz: [x, y, z], rpy: [roll, pitch, yaw] }` or a 4×4 matrix `[[r11, r12, r13, x], …, [0, 0, 0, 1]]`",
             Type::Shape => "a shape: `{ box: [w, l, h] }`, `{ cylinder: [r, h] }`, `{ sphere: r }`, `{ ellipsoid: [a, b, c] }`, `{ plate: [w, l] }` or `{ disc: r }`",
             Type::About => "`com` or `origin`",
             Type::Name => "a name or a string",
             Type::Mimic => "a mimic: `{ joint: LEADER, multiplier: m, offset: o }` (multiplier and offset optional)",
+            Type::Params => "named parameters: `{ m1: 2.0, L1: 1.0 }` (used as string expressions where numbers go: `mass: \"m1\"`)",
         }
     }
 }
@@ -43,6 +46,7 @@ pub const ROBOT_KEYS: &[(&str, Type)] = &[
     ("name", Type::Name),
     ("description", Type::Name),
     ("gravity", Type::Nums),
+    ("parameters", Type::Params),
     // Not TOML keys but generation options: how the dynamics are derived (`newton_euler` or
     // `lagrangian`), run-time gravity and payload (`true`), the payload's link.
     ("method", Type::Name),

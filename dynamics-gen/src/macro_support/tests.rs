@@ -63,6 +63,61 @@ fn pendulum_inline_equals_pendulum_toml() {
     same_impl(&robot, "pendulum.toml", "Pendulum");
 }
 
+/// Named parameters: `parameters: { … }` and string expressions where numbers go, as in the
+/// TOML file of the same robot, with the same parameters kept for `equations --symbolic`.
+#[test]
+fn planar2r_inline_parameters_equal_planar2r_toml() {
+    let robot = inline_robot(quote! {
+        pub struct Planar2r;
+        name: "planar2r",
+        gravity: [0, "-g", 0],
+        parameters: { m1: 2.0, m2: 1.5, L1: 1.0, L2: 0.8, g: 9.81 },
+        joint revolute joint1 {
+            axis: [0, 0, 1],
+            point: [0, 0, 0],
+            link link1 { home: { xyz: ["L1", 0, 0] }, mass: "m1", inertia: [0, 0, 0, 0, 0, 0] },
+        },
+        joint revolute joint2 {
+            axis: [0, 0, 1],
+            point: ["L1", 0, 0],
+            link link2 { home: { xyz: ["L2", 0, 0] }, mass: "m2", inertia: [0, 0, 0, 0, 0, 0] },
+        },
+        end_effector tip {},
+    });
+    same_impl(&robot, "planar2r.toml", "Planar2r");
+    let file = load_file(&robots_dir().join("planar2r.toml"), &LoadOptions::default()).unwrap();
+    // The same parameters and values (robot! lists them in alphabetical order), and the
+    // same fields kept for `equations --symbolic`.
+    let pairs = |p: &dynamics_model::parameters::Parameters| {
+        let mut v: Vec<(String, f64)> = p.names.iter().cloned().zip(p.values.clone()).collect();
+        v.sort_by(|a, b| a.0.cmp(&b.0));
+        v
+    };
+    assert_eq!(pairs(&robot.parameters), pairs(&file.parameters));
+    let kept = |p: &dynamics_model::parameters::Parameters| {
+        (
+            p.gravity.is_some(),
+            p.screws.len(),
+            p.homes.len(),
+            p.inertias.len(),
+            p.elsewhere.len(),
+        )
+    };
+    assert_eq!(kept(&robot.parameters), (true, 1, 2, 2, 0));
+    assert_eq!(kept(&robot.parameters), kept(&file.parameters));
+    let errors = inline_errors(quote! {
+        pub struct Bad;
+        parameters: { m1: 2.0 },
+        joint revolute j { axis: [0, 0, 1], point: [0, 0, 0], link l { home: { xyz: [0, 0, 0] }, mass: "m2", inertia: [1, 1, 1, 0, 0, 0] } },
+    });
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("`m2` is not a declared parameter (declared: m1")),
+        "{errors:?}"
+    );
+}
+
 /// The UR5 of mr_ur5.toml, with every home as a 4×4 matrix and the screw axes as `screw`
 /// (v = −ω × q computed by hand from the file's axis and point).
 #[test]

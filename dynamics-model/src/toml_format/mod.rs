@@ -116,6 +116,20 @@
 //! for a floating base); its inertial keys are a link's, expressed in {0}, and are part of
 //! the dynamics only when it floats.
 //!
+//! ## Named parameters and expressions
+//!
+//! `[parameters]` declares names with numeric values (`m1 = 2.0`, `L1 = 1.0`; ASCII letters,
+//! digits and `_`, starting with a letter; not `pi`). Anywhere the format takes a number, a
+//! string is an arithmetic expression over them: `mass = "m1"`,
+//! `home = { xyz = ["L1/2", 0, 0] }`, `inertia = ["m1*L1^2/12", …]`, `rpy = [0, "pi/2", 0]`
+//! (`+ - * / ^`, parentheses, numbers, the parameters and `pi`; see
+//! [`crate::parameters`]). Each is evaluated when the file is read, in place, so the robot is
+//! the numeric robot it describes and later errors keep their line numbers. An unknown name
+//! or a malformed expression is an error naming the link or joint and the field. The
+//! expressions in gravity, `screw`, `point`, `home.xyz`, `mass`, `com` and `inertia` are kept
+//! ([`crate::Robot::parameters`]) for `dynamics-gen equations --symbolic`, which prints the
+//! equations with the named parameters as symbols.
+//!
 //! ## Mimic joints
 //!
 //! `mimic = { joint = "LEADER", multiplier = m, offset = o }` (m default 1, o default 0)
