@@ -133,8 +133,32 @@ fn toml_syntax_error_has_line_and_column() {
 
 #[test]
 fn wrong_type_is_a_parse_error() {
+    let text = edit("mass = 1.0", "mass = true");
+    parse_error(&text, 11, 8, &["boolean", "link `l1`"]);
+}
+
+#[test]
+fn a_string_where_a_number_goes_is_an_expression_over_the_parameters() {
     let text = edit("mass = 1.0", "mass = \"heavy\"");
-    parse_error(&text, 11, 8, &["string", "link `l1`"]);
+    let err = dynamics_model::toml_format::from_str(&text, "bad.toml")
+        .unwrap_err()
+        .to_string();
+    for part in [
+        "bad.toml: link `l1`: field `mass`",
+        "`heavy` is not a declared parameter",
+        "add `[parameters]` with `heavy = VALUE`",
+    ] {
+        assert!(err.contains(part), "{err}");
+    }
+    // Declared, it is the number.
+    let text = edit("mass = 1.0", "mass = \"heavy / 2\"").replacen(
+        "\n[[joint]]",
+        "\n[parameters]\nheavy = 3.0\n\n[[joint]]",
+        1,
+    );
+    let robot = dynamics_model::toml_format::from_str(&text, "ok.toml").expect("evaluated");
+    assert_eq!(robot.links[0].inertia.mass(), 1.5);
+    assert_eq!(robot.parameters.names, ["heavy"]);
 }
 
 #[test]

@@ -28,6 +28,9 @@ pub struct Term {
     pub factors: Vec<(Factor, u32)>,
 }
 
+/// The other factors of a term and the two angles of a pair of its sines and cosines.
+type PairKey = (Vec<(Factor, u32)>, Angle, Angle);
+
 fn factors_of(m: &Monomial) -> Vec<(Factor, u32)> {
     let mut out: Vec<(Factor, u32)> = m
         .iter()
@@ -77,8 +80,7 @@ pub fn combined(p: &Poly) -> Vec<Term> {
         .collect();
     loop {
         // (rest, α, β) → [cos α cos β, sin α sin β, sin α cos β, cos α sin β] term indices.
-        let mut pairs: BTreeMap<(Vec<(Factor, u32)>, Angle, Angle), [Option<usize>; 4]> =
-            BTreeMap::new();
+        let mut pairs: BTreeMap<PairKey, [Option<usize>; 4]> = BTreeMap::new();
         for (t, term) in terms.iter().enumerate() {
             let trig: Vec<usize> = (0..term.factors.len())
                 .filter(|&k| matches!(term.factors[k], (Factor::Trig(..), 1)))

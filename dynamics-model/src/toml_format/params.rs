@@ -9,14 +9,39 @@ use crate::parameters::{Expr, InertialSpec, Parameters, ScrewSpec};
 use std::collections::{BTreeMap, BTreeSet};
 use toml_edit::{DocumentMut, Item, Value};
 
-/// Keys whose values are text, never expressions.
-const TEXT_KEYS: [&str; 6] = [
-    "name",
-    "description",
-    "type",
-    "parent",
-    "joint",
-    "inertia_about",
+/// Keys whose values are numbers (or lists, matrices or tables of them): a string there is
+/// an expression. Anywhere else a string is left for the schema (text, or a type error with
+/// its line).
+const NUMBER_KEYS: [&str; 29] = [
+    "gravity",
+    "screw",
+    "axis",
+    "point",
+    "limits",
+    "velocity_limit",
+    "effort_limit",
+    "damping",
+    "friction",
+    "rotor_inertia",
+    "gear_ratio",
+    "multiplier",
+    "offset",
+    "home",
+    "frame",
+    "xyz",
+    "rpy",
+    "mass",
+    "density",
+    "com",
+    "inertia",
+    "spatial_inertia",
+    "box",
+    "cylinder",
+    "sphere",
+    "ellipsoid",
+    "plate",
+    "disc",
+    "shape",
 ];
 
 /// One step of a path into the file.
@@ -147,7 +172,11 @@ fn walk_value(
 ) {
     match v {
         Value::String(s) => {
-            if matches!(path.last(), Some(Seg::Key(k)) if TEXT_KEYS.contains(&k.as_str())) {
+            let key = path.iter().rev().find_map(|s| match s {
+                Seg::Key(k) => Some(k.as_str()),
+                Seg::Index(_) => None,
+            });
+            if !key.is_some_and(|k| NUMBER_KEYS.contains(&k)) {
                 return;
             }
             let text = s.value().clone();
