@@ -258,16 +258,8 @@ fn with_payload(
     c: [f64; 3],
     i: [f64; 6],
 ) -> Robot {
-    let mut r = robot.clone();
+    let mut r = robot.with_payload(link, m, c, i);
     r.gravity = nalgebra::Vector3::from(g);
-    let [xx, yy, zz, xy, xz, yz] = i;
-    let inertia = nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    let t = dynamics_model::lie::rp_to_trans(
-        &nalgebra::Matrix3::identity(),
-        &nalgebra::Vector3::from(c),
-    );
-    let payload = dynamics_model::SpatialInertia::from_com_frame(m, inertia, &t);
-    r.links[link].inertia = dynamics_model::SpatialInertia(r.links[link].inertia.0 + payload.0);
     r
 }
 

@@ -343,6 +343,19 @@ impl Robot {
     pub fn s_list(&self) -> Vec<Vector6<f64>> {
         self.joints.iter().map(|j| j.screw).collect()
     }
+    /// This robot with a payload added to link `link` (0-based): a rigid body of mass `mass`,
+    /// centre of mass `com` in the link's frame {i}, and rotational inertia `inertia` about
+    /// that centre in {i}'s axes, `[xx, yy, zz, xy, xz, yz]` (the matrix entries). This is
+    /// what a run-time payload ([`RuntimeParameters::payload`]) stands for, in the model.
+    pub fn with_payload(&self, link: usize, mass: f64, com: [f64; 3], inertia: [f64; 6]) -> Robot {
+        let [xx, yy, zz, xy, xz, yz] = inertia;
+        let i_c = nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+        let t = crate::lie::rp_to_trans(&nalgebra::Matrix3::identity(), &Vector3::from(com));
+        let payload = SpatialInertia::from_com_frame(mass, i_c, &t);
+        let mut r = self.clone();
+        r.links[link].inertia = SpatialInertia(r.links[link].inertia.0 + payload.0);
+        r
+    }
 
     /// `M_{0i}`, the home pose of every frame in {0}: index 0 the base (identity), 1..=n the
     /// links (`M_{0,λ(i)} M_{λ(i),i}`), n+1 the end effector.

@@ -41,18 +41,14 @@ pub enum Spec {
 /// `robot` with gravity `values[..3]` and the payload of `values[3..]` (see
 /// [`Spec::Payload`]) added to link `link`'s spatial inertia, numerically in the model.
 pub fn with_payload(robot: &Robot, link: usize, values: &[f64; 13]) -> Robot {
-    use nalgebra::{Matrix3, Vector3};
-    let mut r = robot.clone();
-    r.gravity = Vector3::new(values[0], values[1], values[2]);
-    let [xx, yy, zz, xy, xz, yz] = [7, 8, 9, 10, 11, 12].map(|k| values[k]);
-    let inertia = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    let com = Vector3::new(values[4], values[5], values[6]);
-    let payload = dynamics_model::SpatialInertia::from_com_frame(
+    let at = |k: usize| values[k];
+    let mut r = robot.with_payload(
+        link,
         values[3],
-        inertia,
-        &dynamics_model::lie::rp_to_trans(&Matrix3::identity(), &com),
+        [4, 5, 6].map(at),
+        [7, 8, 9, 10, 11, 12].map(at),
     );
-    r.links[link].inertia = dynamics_model::SpatialInertia(r.links[link].inertia.0 + payload.0);
+    r.gravity = nalgebra::Vector3::new(values[0], values[1], values[2]);
     r
 }
 

@@ -430,6 +430,18 @@ impl Steps {
         }
         let kinetic = g.sum(&terms);
         let potential = kinematics::potential_energy_of(&mut g, robot, &fr, &q);
+        Self::from_energies(g, twists, kinetic, potential, k)
+    }
+
+    /// The derivation from `K` and `P` of a fixed-base robot with `k` coordinates: `L = K − P`,
+    /// `∂L/∂θ̇`, `∂L/∂θ`, `d/dt ∂L/∂θ̇` along `(θ̇, θ̈)` and `τ`.
+    fn from_energies(
+        mut g: ExprGraph,
+        twists: Vec<Spatial>,
+        kinetic: ExprId,
+        potential: ExprId,
+        k: usize,
+    ) -> Self {
         let lagrangian = g.sub(kinetic, potential);
         let wrt_qd: Vec<Input> = (0..k).map(|j| input(QD, j)).collect();
         let wrt_q: Vec<Input> = (0..k).map(|j| input(Q, j)).collect();

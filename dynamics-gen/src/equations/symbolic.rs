@@ -21,7 +21,7 @@
 use super::Steps;
 use crate::error::Error;
 use crate::expand::spatial::VectorOps;
-use crate::expand::{self, base, input, Q, QD, QDD};
+use crate::expand::{self, base, input, lagrangian, Q, QD};
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::parameters::{Expr, ScrewSpec};
 use dynamics_model::{JointKind, Robot};
@@ -417,27 +417,13 @@ pub(super) fn derive(robot: &Robot, keep: &[bool]) -> Result<(Steps, [Vec<ExprId
     }
     let kinetic = g.sum(&terms);
     let potential = g.sum(&potential_terms);
-    let lagrangian = g.sub(kinetic, potential);
+    // M = ∂²K/∂θ̇², c = Ṁ θ̇ − ∂K/∂θ, g = ∂P/∂θ, C from M.
     let wrt_qd: Vec<Input> = (0..n).map(|j| input(QD, j)).collect();
     let wrt_q: Vec<Input> = (0..n).map(|j| input(Q, j)).collect();
-    let dl_dqd = g.grad(lagrangian, &wrt_qd);
-    let dl_dq = g.grad(lagrangian, &wrt_q);
-    let rate = base::configuration_rate(&mut g, false, n);
-    let mut full = rate.clone();
-    full.extend((0..n).map(|j| (input(QD, j), g.input(input(QDD, j)))));
-    let ddt = g.jvp(&dl_dqd, &full);
-    let tau: Vec<ExprId> = (0..n).map(|i| g.sub(ddt[i], dl_dq[i])).collect();
-    // M = ∂²K/∂θ̇², c = Ṁ θ̇ − ∂K/∂θ, g = ∂P/∂θ, C from M.
     let momentum = g.grad(kinetic, &wrt_qd);
     let dk = g.grad(kinetic, &wrt_q);
-    let mut mass_matrix = vec![g.zero(); n * n];
-    for j in 0..n {
-        let col = g.diff_many(&momentum[..=j], input(QD, j));
-        for (i, &e) in col.iter().enumerate() {
-            mass_matrix[i * n + j] = e;
-            mass_matrix[j * n + i] = e;
-        }
-    }
+    let mass_matrix = lagrangian::hessian(&mut g, &momentum);
+    let rate = base::configuration_rate(&mut g, false, n);
     let p_dot = g.jvp(&momentum, &rate);
     let coriolis: Vec<ExprId> = (0..n).map(|i| g.sub(p_dot[i], dk[i])).collect();
     let gravity_terms = g.grad(potential, &wrt_q);
@@ -447,18 +433,9 @@ pub(super) fn derive(robot: &Robot, keep: &[bool]) -> Result<(Steps, [Vec<ExprId
         .into_iter()
         .map(|(ang, lin)| expand::spatial::Spatial { ang, lin })
         .collect();
+    let steps = Steps::from_energies(g, twists, kinetic, potential, n);
     Ok((
-        Steps {
-            graph: g,
-            twists,
-            kinetic,
-            potential,
-            lagrangian,
-            dl_dqd,
-            ddt,
-            dl_dq,
-            tau,
-        },
+        steps,
         [mass_matrix, coriolis, coriolis_matrix, gravity_terms],
     ))
 }

@@ -212,7 +212,7 @@ pub fn lagrangian(
 
 /// `∂p/∂ν` (nv×nv row-major) of the momentum `p`: its upper triangle by one forward sweep
 /// per column, mirrored, so the result is exactly symmetric.
-fn hessian(g: &mut ExprGraph, p: &[ExprId]) -> Vec<ExprId> {
+pub(crate) fn hessian(g: &mut ExprGraph, p: &[ExprId]) -> Vec<ExprId> {
     let nv = p.len();
     let mut m = vec![g.zero(); nv * nv];
     for j in 0..nv {

@@ -15,9 +15,8 @@ use super::parameters::{PARAM, PAYLOAD_COM, PAYLOAD_INERTIA, PAYLOAD_MASS};
 use super::regressor::expand_regressor;
 use super::*;
 use crate::expr::ExprGraph;
-use dynamics_model::lie::rp_to_trans;
 use dynamics_model::random::{random_chain, random_mimics, random_tree, ChainSpec, Rng, TreeSpec};
-use dynamics_model::{Robot, SpatialInertia};
+use dynamics_model::Robot;
 use nalgebra::{Matrix3, Vector3};
 
 /// A payload and a gravity vector: the 13 parameter values.
@@ -48,19 +47,15 @@ fn changed(seed: u64) -> [f64; 13] {
 
 /// `robot` with the payload and gravity of `values` folded into the model.
 fn folded(robot: &Robot, link: usize, values: &[f64; 13]) -> Robot {
-    let mut r = robot.clone();
+    let at = |k: u16| values[k as usize];
+    let mut r = robot.with_payload(
+        link,
+        at(PAYLOAD_MASS),
+        [0, 1, 2].map(|j| at(PAYLOAD_COM + j)),
+        [0, 1, 2, 3, 4, 5].map(|j| at(PAYLOAD_INERTIA + j)),
+    );
     r.runtime = Default::default();
     r.gravity = Vector3::new(values[0], values[1], values[2]);
-    let k = PAYLOAD_INERTIA as usize;
-    let [xx, yy, zz, xy, xz, yz] = [0, 1, 2, 3, 4, 5].map(|j| values[k + j]);
-    let i_c = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    let c = Vector3::from_fn(|j, _| values[PAYLOAD_COM as usize + j]);
-    let payload = SpatialInertia::from_com_frame(
-        values[PAYLOAD_MASS as usize],
-        i_c,
-        &rp_to_trans(&Matrix3::identity(), &c),
-    );
-    r.links[link].inertia = SpatialInertia(r.links[link].inertia.0 + payload.0);
     r
 }
 
