@@ -307,6 +307,8 @@ fn model_error(spans: &Located, e: &ModelError, early: &[Invalid], text: &str) -
                 .cloned()
                 .map(|mut inv| {
                     inv.file = None;
+                    inv.problem = macro_spelling(&inv.problem);
+                    inv.fix = macro_spelling(&inv.fix);
                     inv
                 })
                 .collect();
@@ -327,6 +329,28 @@ fn model_error(spans: &Located, e: &ModelError, early: &[Invalid], text: &str) -
             format!("internal error in robot! (please report): {other}\n{text}"),
         ),
     }
+}
+
+/// The TOML loader's advice about an undeclared parameter in `robot!`'s own spelling:
+/// `parameters: { m2: VALUE }` where a file would write `[parameters]` and `m2 = VALUE`.
+fn macro_spelling(message: &str) -> String {
+    let message = message.replace(
+        "declared in `[parameters]`",
+        "declared in `parameters: { … }`",
+    );
+    let Some(end) = message.find(" = VALUE`") else {
+        return message;
+    };
+    let name = &message[message[..end].rfind('`').map_or(0, |i| i + 1)..end];
+    message
+        .replace(
+            &format!("add `[parameters]` with `{name} = VALUE`"),
+            &format!("add `parameters: {{ {name}: VALUE }}`"),
+        )
+        .replace(
+            &format!("add `{name} = VALUE` to `[parameters]`"),
+            &format!("add `{name}: VALUE` to `parameters: {{ … }}`"),
+        )
 }
 
 /// Splits a block body (or the top level) into items.

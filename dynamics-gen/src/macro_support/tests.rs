@@ -113,7 +113,18 @@ fn planar2r_inline_parameters_equal_planar2r_toml() {
     assert!(
         errors
             .iter()
-            .any(|e| e.contains("`m2` is not a declared parameter (declared: m1")),
+            .any(|e| e.contains("`m2` is not a declared parameter (declared: m1; or add `m2: VALUE` to `parameters: { … }`)")),
+        "{errors:?}"
+    );
+    // Without `parameters:` at all, the advice is in the macro's spelling too.
+    let errors = inline_errors(quote! {
+        pub struct Bad;
+        joint revolute j { axis: [0, 0, 1], point: [0, 0, 0], link l { home: { xyz: [0, 0, 0] }, mass: "m2", inertia: [1, 1, 1, 0, 0, 0] } },
+    });
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("add `parameters: { m2: VALUE }`") && !e.contains("[parameters]")),
         "{errors:?}"
     );
 }
