@@ -97,3 +97,21 @@ for line in open(pin_file):
     cell = f"{ns:8.1f} {float(med) / ns:5.1f}x" if ns else f"{'-':>8} {'-':>6}"
     print(f"{robot:<16} {algo:<19} {float(med):8.1f} {ours[algo]:<33} {cell}")
 EOF
+# 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run.
+"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
+import json, os, sys
+crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
+def median(robot, name):
+    est = os.path.join(crit, robot, "generated_" + name, "new", "estimates.json")
+    if os.path.exists(est) and os.path.getmtime(est) >= start:
+        return json.load(open(est))["median"]["point_estimate"]
+rows = []
+for robot in robots:
+    for f in ["inverse_dynamics", "forward_dynamics", "mass_matrix", "gravity"]:
+        single, batch = median(robot, f + "_x8_single"), median(robot, f + "_x8_batch")
+        if single and batch:
+            rows.append(f"{robot:<16} {f:<18} {single / 8:9.1f} {batch / 8:9.1f} {single / batch:6.2f}x")
+if rows:
+    print(f"\n{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}")
+    print("\n".join(rows))
+EOF

@@ -235,6 +235,20 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
             });
         }
     }
+    // The batch functions: the single-state function's operations, per state (each on all
+    // `B` lanes at once).
+    for (name, roots) in [
+        ("inverse_dynamics_batch", &d.inverse_dynamics),
+        ("forward_dynamics_batch", &d.forward_dynamics),
+        ("mass_matrix_batch", &d.mass_matrix),
+        ("gravity_batch", &d.gravity),
+    ] {
+        functions.push(FunctionStats {
+            name,
+            ops: d.graph.op_counts(roots),
+            lines: function_lines(code, name),
+        });
+    }
     if let Some(r) = &generated.regressor {
         for (name, roots) in [
             ("regressor", r.y.clone()),

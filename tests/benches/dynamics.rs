@@ -141,6 +141,69 @@ macro_rules! bench_derivatives {
     }};
 }
 
+/// The batch functions on 8 states against 8 single-state calls on the same states: both
+/// rows time 8 states, so their ratio is the batch's gain per state.
+macro_rules! bench_batch {
+    ($c:expr, $label:literal, $m:ident, $nq:literal, $nv:literal) => {{
+        use dynamics_tests::generated::$m::Robot as Gen;
+        const B: usize = 8;
+        let q: [SVector<f64, $nq>; B] =
+            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.3 + 0.2 * i as f64 - 0.1 * l as f64));
+        let qd: [SVector<f64, $nv>; B] = std::array::from_fn(|l| {
+            SVector::from_fn(|i, _| 0.5 - 0.1 * i as f64 + 0.05 * l as f64)
+        });
+        let qdd: [SVector<f64, $nv>; B] = std::array::from_fn(|l| {
+            SVector::from_fn(|i, _| -0.4 + 0.15 * i as f64 + 0.1 * l as f64)
+        });
+        let tau = Gen.inverse_dynamics_batch(&q, &qd, &qdd);
+        let mut group = $c.benchmark_group($label);
+        group.bench_function("generated/inverse_dynamics_x8_batch", |b| {
+            b.iter(|| Gen.inverse_dynamics_batch(black_box(&q), black_box(&qd), black_box(&qdd)))
+        });
+        group.bench_function("generated/inverse_dynamics_x8_single", |b| {
+            b.iter(|| {
+                let (q, qd, qdd) = (black_box(&q), black_box(&qd), black_box(&qdd));
+                let out: [SVector<f64, $nv>; B] =
+                    std::array::from_fn(|l| Gen.inverse_dynamics(&q[l], &qd[l], &qdd[l]));
+                out
+            })
+        });
+        group.bench_function("generated/forward_dynamics_x8_batch", |b| {
+            b.iter(|| Gen.forward_dynamics_batch(black_box(&q), black_box(&qd), black_box(&tau)))
+        });
+        group.bench_function("generated/forward_dynamics_x8_single", |b| {
+            b.iter(|| {
+                let (q, qd, tau) = (black_box(&q), black_box(&qd), black_box(&tau));
+                let out: [SVector<f64, $nv>; B] =
+                    std::array::from_fn(|l| Gen.forward_dynamics(&q[l], &qd[l], &tau[l]));
+                out
+            })
+        });
+        group.bench_function("generated/mass_matrix_x8_batch", |b| {
+            b.iter(|| Gen.mass_matrix_batch(black_box(&q)))
+        });
+        group.bench_function("generated/mass_matrix_x8_single", |b| {
+            b.iter(|| {
+                let q = black_box(&q);
+                let out: [nalgebra::SMatrix<f64, $nv, $nv>; B] =
+                    std::array::from_fn(|l| Gen.mass_matrix(&q[l]));
+                out
+            })
+        });
+        group.bench_function("generated/gravity_x8_batch", |b| {
+            b.iter(|| Gen.gravity_batch(black_box(&q)))
+        });
+        group.bench_function("generated/gravity_x8_single", |b| {
+            b.iter(|| {
+                let q = black_box(&q);
+                let out: [SVector<f64, $nv>; B] = std::array::from_fn(|l| Gen.gravity(&q[l]));
+                out
+            })
+        });
+        group.finish();
+    }};
+}
+
 fn benches(c: &mut Criterion) {
     let data = dynamics_tests::data_dir().join("robots");
     let load = |name: &str, tip: &str| {
@@ -160,6 +223,10 @@ fn benches(c: &mut Criterion) {
         load("panda", "panda_hand_tcp")
     );
     bench_robot!(c, "rand7", urdf_rand7, 7, 7, load("rand7", "ee_link"));
+    bench_batch!(c, "ur5", urdf_ur5, 6, 6);
+    bench_batch!(c, "panda", urdf_panda, 7, 7);
+    bench_batch!(c, "rand7", urdf_rand7, 7, 7);
+    bench_batch!(c, "solo12", tree_solo12, 19, 18);
     bench_derivatives!(c, "ur5", urdf_ur5, 6, 6);
     bench_derivatives!(c, "panda", urdf_panda, 7, 7);
     bench_derivatives!(c, "rand7", urdf_rand7, 7, 7);

@@ -57,6 +57,11 @@ macro_rules! no_alloc {
             black_box(Robot::DEFAULT.kinetic_energy(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.potential_energy(black_box(&q)));
             black_box(Robot::DEFAULT.mass_matrix_dot(black_box(&q), black_box(&qd)));
+            let (qs, qds, xs) = ([q; 4], [qd; 4], [x; 4]);
+            black_box(Robot::DEFAULT.inverse_dynamics_batch(&qs, &qds, black_box(&xs)));
+            black_box(Robot::DEFAULT.forward_dynamics_batch(&qs, &qds, black_box(&xs)));
+            black_box(Robot::DEFAULT.mass_matrix_batch(black_box(&qs)));
+            black_box(Robot::DEFAULT.gravity_batch(black_box(&qs)));
             black_box(Robot::DEFAULT.jacobian_space_dot(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.jacobian_body_dot(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.end_effector_pose(black_box(&q)));

@@ -62,6 +62,22 @@ mod release {
                     Robot::DEFAULT.potential_energy(q)
                 }
                 #[no_panic]
+                pub fn inverse_dynamics_batch(q: &[Q; 4], qd: &[V; 4], qdd: &[V; 4]) -> [V; 4] {
+                    Robot::DEFAULT.inverse_dynamics_batch(q, qd, qdd)
+                }
+                #[no_panic]
+                pub fn forward_dynamics_batch(q: &[Q; 4], qd: &[V; 4], tau: &[V; 4]) -> [V; 4] {
+                    Robot::DEFAULT.forward_dynamics_batch(q, qd, tau)
+                }
+                #[no_panic]
+                pub fn mass_matrix_batch(q: &[Q; 4]) -> [SMatrix<$s, $nv, $nv>; 4] {
+                    Robot::DEFAULT.mass_matrix_batch(q)
+                }
+                #[no_panic]
+                pub fn gravity_batch(q: &[Q; 4]) -> [V; 4] {
+                    Robot::DEFAULT.gravity_batch(q)
+                }
+                #[no_panic]
                 pub fn mass_matrix_dot(q: &Q, qd: &V) -> SMatrix<$s, $nv, $nv> {
                     Robot::DEFAULT.mass_matrix_dot(q, qd)
                 }
@@ -177,6 +193,12 @@ mod release {
                     let e = e + mass_matrix_dot(&q, &v)[(0, 0)];
                     let e =
                         e + jacobian_space_dot(&q, &v)[(5, 0)] + jacobian_body_dot(&q, &v)[(5, 0)];
+                    let (qs, vs) = ([q; 4], [v; 4]);
+                    let e = e
+                        + inverse_dynamics_batch(&qs, &vs, &vs)[3][0]
+                        + forward_dynamics_batch(&qs, &vs, &vs)[3][0]
+                        + mass_matrix_batch(&qs)[3][(0, 0)]
+                        + gravity_batch(&qs)[3][0];
                     m[(0, 0)] + c[0] + g[0] + a[0] + p.translation.x + js[(5, 0)] + jb[(5, 0)] + e
                 }
             }

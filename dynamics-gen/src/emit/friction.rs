@@ -211,6 +211,32 @@ pub fn add_friction(body: TokenStream, options: &Options) -> TokenStream {
     }
 }
 
+/// A batch function's `body` with friction, when the options include it: added to each
+/// state's result of `inverse_dynamics_batch`, subtracted from each state's `tau` before
+/// `forward_dynamics_batch` (as [`add_friction`] and [`subtract_friction`] do for one state).
+pub fn batch_friction(single: &str, body: TokenStream, options: &Options) -> TokenStream {
+    match (options.friction, single) {
+        (Some(_), "inverse_dynamics") => quote! {
+            let mut tau = { #body };
+            for (t, v) in tau.iter_mut().zip(qd.iter()) {
+                *t += self.friction(v);
+            }
+            tau
+        },
+        (Some(_), "forward_dynamics") => quote! {
+            let tau = &{
+                let mut t = *tau;
+                for (x, v) in t.iter_mut().zip(qd.iter()) {
+                    *x -= self.friction(v);
+                }
+                t
+            };
+            #body
+        },
+        _ => body,
+    }
+}
+
 /// `body` (which reads `tau`) with `tau − friction(q̇)` as its `tau`, when the options
 /// include friction.
 pub fn subtract_friction(body: TokenStream, options: &Options) -> TokenStream {

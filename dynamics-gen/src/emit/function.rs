@@ -92,6 +92,11 @@ pub struct FunctionBody<'a> {
     /// The generated struct, which the pieces of a split body call helpers through (a
     /// nested `fn` cannot name `Self`); `None`: never split (see [`chunked`]).
     pub self_ty: Option<&'a Ident>,
+    /// `Some(runtime crate path)`: the body of a `*_batch` function (see
+    /// [`crate::emit::batch`]): every value a `Lanes<scalar, B>` of the `B` states, the
+    /// arguments arrays of `B` vectors and the result (an [`Output::Matrix`]) an array of `B`
+    /// matrices; no fused multiply-adds (lanes have none) and never split.
+    pub lanes: Option<&'a TokenStream>,
 }
 
 /// The most `let` statements in one block: longer bodies are split into blocks (see
@@ -101,7 +106,7 @@ const MAX_BLOCK_LETS: usize = 512;
 /// Bodies of more `let` statements than this are split into `#[inline(never)]` functions
 /// of [`PART_LETS`] statements each (see [`chunked`]). Below it (every function of a
 /// 7-joint arm) the body stays one function, which the optimiser sees whole.
-const MAX_UNSPLIT_LETS: usize = 4096;
+pub(crate) const MAX_UNSPLIT_LETS: usize = 4096;
 
 /// The `let` statements of one part of a split body (see [`chunked`]). Measured on a
 /// humanoid's (G1, floating base) derivatives, three functions of 12k–20k statements: one
@@ -278,7 +283,17 @@ impl FunctionBody<'_> {
                 })
                 .collect();
             let arg_ident = Ident::new(arg.name, Span::call_site());
-            stmts.extend(quote! { let [[#(#names),*]] = #arg_ident.data.0; });
+            stmts.extend(if self.lanes.is_some() {
+                let lanes = self.lanes_ty();
+                quote! {
+                    let [#(#names),*] = #lanes::gather(#arg_ident.each_ref().map(|v| {
+                        let [c] = v.data.0;
+                        c
+                    }));
+                }
+            } else {
+                quote! { let [[#(#names),*]] = #arg_ident.data.0; }
+            });
         }
 
         // Run-time parameters (`crate::expand::parameters`): from the struct's fields.
@@ -390,15 +405,16 @@ impl FunctionBody<'_> {
                 Scalar::F64 => 4,
                 Scalar::F32 => 8,
             };
-            while args.len() % lanes != 0 && args.len() > 1 {
+            while args.len() % lanes != 0 && args.len() > 1 && self.lanes.is_none() {
                 args.push(float_tokens(0.0, self.scalar));
                 s_pats.push(quote!(_));
                 c_pats.push(quote!(_));
             }
+            let call = self.sin_cos_call(&args);
             body.push(Statement {
                 defined,
                 tokens: quote! {
-                    let ([#(#s_pats),*], [#(#c_pats),*]) = Self::joint_sin_cos([#(#args),*]);
+                    let ([#(#s_pats),*], [#(#c_pats),*]) = #call;
                 },
                 reads,
             });
@@ -432,9 +448,10 @@ impl FunctionBody<'_> {
                     let mut defined = Vec::new();
                     let s_pat = self.trig_pattern(&mut bind, &mut defined, s, trig[t].1);
                     let c_pat = self.trig_pattern(&mut bind, &mut defined, c, trig[t].2);
+                    let call = self.sin_cos_call(&[x]);
                     body.push(Statement {
                         defined,
-                        tokens: quote! { let ([#s_pat], [#c_pat]) = Self::joint_sin_cos([#x]); },
+                        tokens: quote! { let ([#s_pat], [#c_pat]) = #call; },
                         reads,
                     });
                 }
@@ -520,7 +537,10 @@ impl FunctionBody<'_> {
         for &o in self.outputs {
             self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
-        let split = self.self_ty.map(|t| (t, self.scalar));
+        let split = self
+            .self_ty
+            .filter(|_| self.lanes.is_none())
+            .map(|t| (t, self.scalar));
         stmts.extend(chunked(body, &last_use, &bind, split));
         stmts.extend(value);
         stmts
@@ -559,14 +579,26 @@ impl FunctionBody<'_> {
             proc_macro2::Literal::usize_unsuffixed(rows),
             proc_macro2::Literal::usize_unsuffixed(cols),
         );
+        let lanes = self.lanes_ty();
         let columns: Vec<TokenStream> = (0..cols)
             .map(|c| {
                 let entries: Vec<TokenStream> = (0..rows)
-                    .map(|r| self.expr(bind, outputs[r * cols + c]))
+                    .map(|r| {
+                        let e = self.expr(bind, outputs[r * cols + c]);
+                        if self.lanes.is_some() {
+                            quote!(#lanes::from(#e))
+                        } else {
+                            e
+                        }
+                    })
                     .collect();
                 quote!([#(#entries),*])
             })
             .collect();
+        if self.lanes.is_some() {
+            // The lanes by columns, transposed into one matrix per state.
+            return quote!(#lanes::scatter(&[#(#columns),*]));
+        }
         let ty = if cols == 1 {
             quote!(#na::SVector::<#scalar, #rows_lit>)
         } else {
@@ -583,6 +615,24 @@ impl FunctionBody<'_> {
             .collect();
         let (r0, r1, r2, p) = (&e[0..3], &e[3..6], &e[6..9], &e[9..12]);
         quote!(Self::isometry([[#(#r0),*], [#(#r1),*], [#(#r2),*]], [#(#p),*]))
+    }
+
+    /// `::dynamics_runtime::Lanes::<scalar, B>`, the value type of a batch body.
+    fn lanes_ty(&self) -> TokenStream {
+        let scalar = Ident::new(self.scalar.as_str(), Span::call_site());
+        let runtime = self.lanes;
+        quote!(#runtime::Lanes::<#scalar, B>)
+    }
+
+    /// The sines and cosines of `args` by the `joint_sin_cos` helper: one call, or in a batch
+    /// body one call per argument, on its `B` lanes.
+    fn sin_cos_call(&self, args: &[TokenStream]) -> TokenStream {
+        if self.lanes.is_some() {
+            let lanes = self.lanes_ty();
+            quote!(#lanes::each2([#(#lanes::from(#args)),*], Self::joint_sin_cos))
+        } else {
+            quote!(Self::joint_sin_cos([#(#args),*]))
+        }
     }
 
     /// The pattern binding a sine or cosine named `name` (node `id`, if live), or `_`.
@@ -641,6 +691,7 @@ impl FunctionBody<'_> {
     /// multiply-add: with `std` only (see [`mul_add_helper`]).
     fn fused(&self, bind: &[Binding], id: ExprId) -> bool {
         !self.no_std
+            && self.lanes.is_none()
             && matches!(bind[id.index()], Binding::Inline)
             && matches!(self.graph.node(id), Node::Mul(..))
     }
@@ -727,6 +778,16 @@ impl FunctionBody<'_> {
             }
             Node::Sqrt(a) => {
                 let a = self.expr(bind, a);
+                if self.lanes.is_some() {
+                    let lanes = self.lanes_ty();
+                    let f = match (self.no_std, self.scalar) {
+                        (false, Scalar::F64) => quote!(f64::sqrt),
+                        (false, Scalar::F32) => quote!(f32::sqrt),
+                        (true, Scalar::F64) => quote!(::libm::sqrt),
+                        (true, Scalar::F32) => quote!(::libm::sqrtf),
+                    };
+                    return quote!(#lanes::from(#a).map(#f));
+                }
                 match (self.no_std, self.scalar) {
                     (false, _) => quote!((#a).sqrt()),
                     (true, Scalar::F64) => quote!(::libm::sqrt(#a)),

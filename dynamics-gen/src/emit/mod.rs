@@ -5,6 +5,7 @@
 //! the generated API. [`generate_file`] adds the struct, the `@generated` header and the
 //! formatting.
 
+pub mod batch;
 pub mod derivatives;
 pub mod friction;
 pub mod function;
@@ -139,8 +140,22 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     })?;
     // From here on `options.name` is the struct's name: the pieces of a split function body
     // call the impl's helpers through it (see `function::chunked`).
+    // A selected batch function brings its single-state function: the per-state form of
+    // the batch (no runtime crate, or a body too large to unroll `B` wide) calls it.
+    let functions = options.functions.as_ref().map(|selected| {
+        let mut all = selected.clone();
+        for f in selected {
+            if let Some(single) = f.strip_suffix("_batch") {
+                if !all.iter().any(|s| s == single) {
+                    all.push(single.to_string());
+                }
+            }
+        }
+        all
+    });
     let options = &Options {
         name: Some(struct_name.clone()),
+        functions,
         ..options.clone()
     };
     let nalgebra = path_tokens(&options.nalgebra_path)?;
@@ -262,6 +277,57 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             [&q, &qd, &qdd, &tau],
         ),
         None => quote!(),
+    };
+    // The batch functions: vectorised in the runtime crate's `Lanes`, or per state.
+    let batch_fns = {
+        {
+            let id_args = [q.clone(), qd.clone(), qdd.clone()];
+            let fd_args = [q.clone(), qd.clone(), tau.clone()];
+            let fns = [
+                batch::Batched {
+                    name: "inverse_dynamics_batch",
+                    single: "inverse_dynamics",
+                    args: &id_args,
+                    outputs: &dynamics.inverse_dynamics,
+                    cols: 1,
+                    doc: " Inverse dynamics for a batch of states: `τ[l] = inverse_dynamics(q[l], q̇[l], q̈[l])` for each of the `B` states (MPC, sampling-based planning, learning).",
+                },
+                batch::Batched {
+                    name: "forward_dynamics_batch",
+                    single: "forward_dynamics",
+                    args: &fd_args,
+                    outputs: &dynamics.forward_dynamics,
+                    cols: 1,
+                    doc: " Forward dynamics for a batch of states: `q̈[l] = forward_dynamics(q[l], q̇[l], τ[l])` for each of the `B` states (rollouts of many trajectories at once).",
+                },
+                batch::Batched {
+                    name: "mass_matrix_batch",
+                    single: "mass_matrix",
+                    args: std::slice::from_ref(&q),
+                    outputs: &dynamics.mass_matrix,
+                    cols: nv_usize,
+                    doc: " The mass matrix for a batch of configurations: `M[l] = mass_matrix(q[l])` for each of the `B` configurations.",
+                },
+                batch::Batched {
+                    name: "gravity_batch",
+                    single: "gravity",
+                    args: std::slice::from_ref(&q),
+                    outputs: &dynamics.gravity,
+                    cols: 1,
+                    doc: " The gravity forces for a batch of configurations: `g[l] = gravity(q[l])` for each of the `B` configurations.",
+                },
+            ];
+            batch::batch_functions(
+                &dynamics.graph,
+                &fns,
+                nv_usize,
+                options,
+                &nalgebra,
+                runtime.as_ref(),
+                |name| emitted(options, name),
+                &|single, body| friction::batch_friction(single, body, options),
+            )
+        }
     };
     let regressor = REGRESSOR_FUNCTIONS
         .iter()
@@ -467,6 +533,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
 
             #derivative_fns
 
+            #batch_fns
+
             #regressor_fns
 
             #kinematics_fns
@@ -623,6 +691,7 @@ fn body_tokens(
         no_std: options.no_std,
         nalgebra,
         self_ty: self_ty.as_ref(),
+        lanes: None,
     }
     .tokens()
 }

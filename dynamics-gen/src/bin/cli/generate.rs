@@ -148,6 +148,11 @@ pub fn stats(stats_args: &StatsArgs) -> Result<(), String> {
         options.method.as_str()
     ).ok();
     write!(out, "{stats}").ok();
+    writeln!(
+        out,
+        "the *_batch functions' counts are per state (each operation runs on all B states at once)"
+    )
+    .ok();
     let (mul, add) = featherstone_rnea(stats.dof);
     writeln!(out,
         "for comparison, recursive Newton-Euler (Featherstone's count, 93n-69 mul, 81n-66 add): {mul} mul, {add} add/sub"

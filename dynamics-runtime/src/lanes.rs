@@ -1,0 +1,165 @@
+//! [`Lanes`]: `B` values of one scalar type side by side, for the generated `*_batch`
+//! functions (structure of arrays across states).
+
+use core::ops::{Add, Div, Mul, Neg, Sub};
+use nalgebra::{ArrayStorage, SMatrix, Scalar};
+
+/// `B` values of the scalar `T` (`f64` or `f32`), one per state of a batch: the value type of
+/// the generated `*_batch` functions, whose unrolled code is the single-state code with each
+/// scalar replaced by a `Lanes`. Every arithmetic operation acts lane by lane on fixed-size
+/// arrays, `#[inline(always)]`, so that the compiler vectorises it across the states (4 lanes
+/// of `f64` per AVX2 register, 2 per SSE2 register). Lanes never mix: lane `l` of a result
+/// depends on lane `l` of the operands only, and gives the same bits as the scalar code's
+/// operation on that state. A scalar operand (a constant of the robot, a run-time parameter)
+/// acts on every lane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lanes<T, const B: usize>(pub [T; B]);
+
+impl<T: Copy, const B: usize> Lanes<T, B> {
+    /// Every lane `x`.
+    #[inline(always)]
+    #[must_use]
+    pub fn splat(x: T) -> Self {
+        Self([x; B])
+    }
+
+    /// `f` applied lane by lane.
+    #[inline(always)]
+    #[must_use]
+    pub fn map(self, f: impl Fn(T) -> T) -> Self {
+        Self(self.0.map(f))
+    }
+
+    /// The `K` values of each of the `B` states (`xs[l][k]`, state `l`, coordinate `k`) as `K`
+    /// lanes (`out[k].0[l]`): the transpose into structure of arrays. Not inlined: the batch
+    /// body then reads whole lanes from memory, which the vectoriser loads as vectors.
+    #[inline(never)]
+    #[must_use]
+    pub fn gather<const K: usize>(xs: [[T; K]; B]) -> [Self; K]
+    where
+        T: Default,
+    {
+        core::array::from_fn(|k| Self(xs.each_ref().map(|x| x.get(k).copied().unwrap_or_default())))
+    }
+
+    /// Columns of lanes (`cols[c][r].0[l]`) back to one `R × C` matrix per state (entry
+    /// `(r, c)` of matrix `l`): the transpose out of structure of arrays. Not inlined: the
+    /// batch body stores whole lanes, which the vectoriser writes as vectors (strided stores
+    /// of single lanes would leave the body scalar).
+    #[inline(never)]
+    #[must_use]
+    pub fn scatter<const R: usize, const C: usize>(cols: &[[Self; R]; C]) -> [SMatrix<T, R, C>; B]
+    where
+        T: Default + Scalar,
+    {
+        core::array::from_fn(|l| {
+            SMatrix::from_array_storage(ArrayStorage(cols.each_ref().map(|col| {
+                col.each_ref()
+                    .map(|x| x.0.get(l).copied().unwrap_or_default())
+            })))
+        })
+    }
+
+    /// A function of an array to two arrays of the same length (such as the sines and
+    /// cosines of all its elements) applied to each of `args`, all `B` lanes at once.
+    #[inline(always)]
+    #[must_use]
+    pub fn each2<const K: usize>(
+        args: [Self; K],
+        f: impl Fn([T; B]) -> ([T; B], [T; B]),
+    ) -> ([Self; K], [Self; K]) {
+        let results = args.map(|a| f(a.0));
+        (results.map(|r| Self(r.0)), results.map(|r| Self(r.1)))
+    }
+}
+
+impl<T: Copy, const B: usize> From<T> for Lanes<T, B> {
+    #[inline(always)]
+    fn from(x: T) -> Self {
+        Self::splat(x)
+    }
+}
+
+macro_rules! lane_ops {
+    ($($t:ty),*) => {$(
+        lane_ops!(@op $t, Add, add, +);
+        lane_ops!(@op $t, Sub, sub, -);
+        lane_ops!(@op $t, Mul, mul, *);
+        lane_ops!(@op $t, Div, div, /);
+        impl<const B: usize> Neg for Lanes<$t, B> {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                Self(self.0.map(|a| -a))
+            }
+        }
+    )*};
+    (@op $t:ty, $trait:ident, $f:ident, $op:tt) => {
+        impl<const B: usize> $trait for Lanes<$t, B> {
+            type Output = Self;
+            #[inline(always)]
+            #[allow(clippy::assign_op_pattern)] // `$op`, not `$op=`: the same macro for all four
+            fn $f(self, rhs: Self) -> Self {
+                let mut out = self.0;
+                for (o, r) in out.iter_mut().zip(rhs.0) {
+                    *o = *o $op r;
+                }
+                Self(out)
+            }
+        }
+        impl<const B: usize> $trait<$t> for Lanes<$t, B> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, rhs: $t) -> Self {
+                Self(self.0.map(|a| a $op rhs))
+            }
+        }
+        impl<const B: usize> $trait<Lanes<$t, B>> for $t {
+            type Output = Lanes<$t, B>;
+            #[inline(always)]
+            fn $f(self, rhs: Lanes<$t, B>) -> Lanes<$t, B> {
+                Lanes(rhs.0.map(|b| self $op b))
+            }
+        }
+    };
+}
+
+lane_ops!(f32, f64);
+
+#[cfg(test)]
+mod tests {
+    use super::Lanes;
+
+    #[test]
+    fn lanes_act_lane_by_lane() {
+        let a = Lanes([1.0f64, 2.0, 3.0, 4.0]);
+        let b = Lanes([0.5f64, -1.0, 2.0, 8.0]);
+        assert_eq!((a + b).0, [1.5, 1.0, 5.0, 12.0]);
+        assert_eq!((a - b).0, [0.5, 3.0, 1.0, -4.0]);
+        assert_eq!((a * b).0, [0.5, -2.0, 6.0, 32.0]);
+        assert_eq!((a / b).0, [2.0, -2.0, 1.5, 0.5]);
+        assert_eq!((-a).0, [-1.0, -2.0, -3.0, -4.0]);
+        assert_eq!((2.0 * a).0, [2.0, 4.0, 6.0, 8.0]);
+        assert_eq!((a - 1.0).0, [0.0, 1.0, 2.0, 3.0]);
+        assert_eq!((1.0 - a).0, [0.0, -1.0, -2.0, -3.0]);
+        assert_eq!((12.0 / a).0, [12.0, 6.0, 4.0, 3.0]);
+        assert_eq!(Lanes::<f32, 3>::from(2.5).0, [2.5; 3]);
+        assert_eq!(a.map(|x| x * x).0, [1.0, 4.0, 9.0, 16.0]);
+    }
+
+    #[test]
+    fn gather_and_scatter_are_transposes() {
+        let states = [[1.0f64, 2.0], [3.0, 4.0], [5.0, 6.0]];
+        let lanes = Lanes::gather(states);
+        assert_eq!(lanes[0].0, [1.0, 3.0, 5.0]);
+        assert_eq!(lanes[1].0, [2.0, 4.0, 6.0]);
+        let back = Lanes::scatter(&[lanes]);
+        assert_eq!(
+            back.map(|m| m.data.0),
+            [[[1.0, 2.0]], [[3.0, 4.0]], [[5.0, 6.0]]]
+        );
+        let (s, c) = Lanes::each2(lanes, |x: [f64; 3]| (x.map(|v| v + 1.0), x.map(|v| -v)));
+        assert_eq!(s[1].0, [3.0, 5.0, 7.0]);
+        assert_eq!(c[0].0, [-1.0, -3.0, -5.0]);
+    }
+}

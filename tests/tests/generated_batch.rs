@@ -1,0 +1,85 @@
+//! The batch functions (`inverse_dynamics_batch`, `forward_dynamics_batch`,
+//! `mass_matrix_batch`, `gravity_batch`) against the single-state functions, state by state,
+//! on every generated robot: chains and trees, fixed and floating base, mimic joints, friction,
+//! run-time parameters, both derivation routes, f64 and f32, std and no_std.
+//!
+//! A batch lane is the single-state code's arithmetic on that state, without fused
+//! multiply-adds: where the single-state code has none (`no_std`, or a target without FMA such
+//! as the default x86-64) the results are the same bits; otherwise they agree to rounding.
+
+use nalgebra::SVector;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The robots checked.
+static CHECKED: AtomicUsize = AtomicUsize::new(0);
+
+/// The largest entry of `a − b` over the largest of `b` (plus one, for zero results).
+fn rel<const R: usize, const C: usize>(
+    a: &nalgebra::SMatrix<f64, R, C>,
+    b: &nalgebra::SMatrix<f64, R, C>,
+) -> f64 {
+    (a - b).amax() / (b.amax() + 1.0)
+}
+
+macro_rules! batch {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {{
+        use dynamics_tests::generated::$m::Robot;
+        const B: usize = 3;
+        let r = Robot::DEFAULT;
+        let q: [SVector<$s, $nq>; B] =
+            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.3 + 0.1 * i as $s - 0.45 * l as $s));
+        let qd: [SVector<$s, $nv>; B] =
+            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.5 - 0.2 * i as $s + 0.3 * l as $s));
+        let x: [SVector<$s, $nv>; B] =
+            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.7 * i as $s - 1.0 + l as $s));
+        let tau = r.inverse_dynamics_batch(&q, &qd, &x);
+        let qdd = r.forward_dynamics_batch(&q, &qd, &x);
+        let m = r.mass_matrix_batch(&q);
+        let g = r.gravity_batch(&q);
+        // Same bits where the single-state code fuses nothing.
+        let exact = stringify!($m).contains("no_std") || !cfg!(target_feature = "fma");
+        let tol = if stringify!($s) == "f32" { 1e-5 } else { 1e-12 };
+        for l in 0..B {
+            let pairs = [
+                (
+                    "inverse_dynamics",
+                    tau[l].map(f64::from),
+                    r.inverse_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
+                ),
+                (
+                    "forward_dynamics",
+                    qdd[l].map(f64::from),
+                    r.forward_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
+                ),
+                (
+                    "gravity",
+                    g[l].map(f64::from),
+                    r.gravity(&q[l]).map(f64::from),
+                ),
+            ];
+            for (name, a, b) in pairs {
+                assert!(
+                    if exact { a == b } else { rel(&a, &b) <= tol },
+                    "{}: {name}_batch lane {l}: {a} against {b}",
+                    stringify!($m)
+                );
+            }
+            let (a, b) = (m[l].map(f64::from), r.mass_matrix(&q[l]).map(f64::from));
+            assert!(
+                if exact { a == b } else { rel(&a, &b) <= tol },
+                "{}: mass_matrix_batch lane {l}: {a} against {b}",
+                stringify!($m)
+            );
+        }
+        // Not vacuous: the states differ, and so do the results.
+        assert!(tau[0] != tau[1] && qdd[0] != qdd[2], "{}", stringify!($m));
+        CHECKED.fetch_add(1, Ordering::SeqCst);
+    }};
+}
+
+#[test]
+fn batch_functions_equal_single_state_calls_on_every_generated_robot() {
+    dynamics_tests::with_cases!(batch);
+    let checked = CHECKED.load(Ordering::SeqCst);
+    assert!(checked >= 50, "only {checked} robots");
+}
