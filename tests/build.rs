@@ -57,6 +57,26 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
     "lagrangian_actuated_401",
 ];
 
+/// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
+/// a chain in f64 and f32 (std and no_std), a floating tree, mimic joints, armature and
+/// friction, run-time parameters, the Lagrangian route and a humanoid whose largest bodies
+/// fall back to per-state calls. Every generated robot has the batch functions; instantiating
+/// them `B` wide for all of them made two test binaries take over ten CPU-minutes each.
+const BATCH: &[&str] = &[
+    "shipped_ur5",
+    "shipped_ur5_f32_no_std",
+    "shipped_pendulum_f32_no_std",
+    "urdf_panda",
+    "random_104_f32",
+    "tree_208_f64",
+    "mimic_301_f64",
+    "actuated_402",
+    "runtime_shipped_ur5",
+    "runtime_tree_208_f64",
+    "lagrangian_shipped_ur5",
+    "tree_g1_29dof",
+];
+
 /// The cases generated a second time by the Lagrangian route (`Method::Lagrangian`), as
 /// modules `lagrangian_<case>`: chains, a floating tree, mimic joints, armature and friction,
 /// f64 and f32, std and no_std. Every comparison test runs on them as on the others.
@@ -320,6 +340,12 @@ fn main() {
         };
         cases.push(case);
     }
+    for module in BATCH {
+        assert!(
+            cases.iter().any(|c| c.module == *module),
+            "BATCH names {module}, which is no case"
+        );
+    }
     let mut registry = String::new();
     let mut list = String::new();
     let mut std_list = String::new();
@@ -327,6 +353,7 @@ fn main() {
     let mut modules = String::new();
     let mut derivative_registry = String::new();
     let mut derivative_list = String::new();
+    let (mut batch_list, mut batch_std_list) = (String::new(), String::new());
     let mut regressor_registry = String::new();
     for m in WITHOUT_DERIVATIVES {
         assert!(cases.iter().any(|c| c.module == *m), "no case {m}");
@@ -414,6 +441,22 @@ fn main() {
             }
         }
         writeln!(list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
+        if BATCH.contains(&case.module.as_str()) {
+            writeln!(
+                batch_list,
+                "        $mac!({}, {nq}, {nv}, {s});",
+                case.module
+            )
+            .ok();
+            if !case.no_std {
+                writeln!(
+                    batch_std_list,
+                    "        $mac!({}, {nq}, {nv}, {s});",
+                    case.module
+                )
+                .ok();
+            }
+        }
         if !case.no_std {
             writeln!(std_list, "        $mac!({}, {nq}, {nv}, {s});", case.module).ok();
         }
@@ -438,7 +481,7 @@ fn main() {
     );
     std::fs::write(out.join("cases.rs"), all).expect("OUT_DIR is writable");
     let macro_list = format!(
-        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with the derivative functions and std trigonometry.\n#[macro_export]\nmacro_rules! with_derivative_cases {{\n    ($mac:ident) => {{\n{derivative_list}    }};\n}}\n"
+        "/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot.\n#[macro_export]\nmacro_rules! with_cases {{\n    ($mac:ident) => {{\n{list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with std trigonometry.\n#[macro_export]\nmacro_rules! with_std_cases {{\n    ($mac:ident) => {{\n{std_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with named frames and std trigonometry.\n#[macro_export]\nmacro_rules! with_frame_cases {{\n    ($mac:ident) => {{\n{frame_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for every generated robot with the derivative functions and std trigonometry.\n#[macro_export]\nmacro_rules! with_derivative_cases {{\n    ($mac:ident) => {{\n{derivative_list}    }};\n}}\n/// Calls `$mac!(module, nq, nv, scalar)` for the robots whose batch functions are tested.\n#[macro_export]\nmacro_rules! with_batch_cases {{\n    ($mac:ident) => {{\n{batch_list}    }};\n}}\n/// [`with_batch_cases`] with std trigonometry.\n#[macro_export]\nmacro_rules! with_batch_std_cases {{\n    ($mac:ident) => {{\n{batch_std_list}    }};\n}}\n"
     );
     std::fs::write(out.join("with_cases.rs"), macro_list).expect("OUT_DIR is writable");
 

@@ -57,11 +57,6 @@ macro_rules! no_alloc {
             black_box(Robot::DEFAULT.kinetic_energy(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.potential_energy(black_box(&q)));
             black_box(Robot::DEFAULT.mass_matrix_dot(black_box(&q), black_box(&qd)));
-            let (qs, qds, xs) = ([q; 4], [qd; 4], [x; 4]);
-            black_box(Robot::DEFAULT.inverse_dynamics_batch(&qs, &qds, black_box(&xs)));
-            black_box(Robot::DEFAULT.forward_dynamics_batch(&qs, &qds, black_box(&xs)));
-            black_box(Robot::DEFAULT.mass_matrix_batch(black_box(&qs)));
-            black_box(Robot::DEFAULT.gravity_batch(black_box(&qs)));
             black_box(Robot::DEFAULT.jacobian_space_dot(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.jacobian_body_dot(black_box(&q), black_box(&qd)));
             black_box(Robot::DEFAULT.end_effector_pose(black_box(&q)));
@@ -110,6 +105,27 @@ macro_rules! no_alloc_frames {
 
 static FRAMES_CHECKED: AtomicUsize = AtomicUsize::new(0);
 
+macro_rules! no_alloc_batch {
+    ($m:ident, $nq:literal, $nv:literal, $s:ty) => {{
+        use dynamics_tests::generated::$m::Robot;
+        let qs = [SVector::<$s, $nq>::from_fn(|i, _| 0.3 + 0.1 * i as $s); 4];
+        let qds = [SVector::<$s, $nv>::from_fn(|i, _| 0.5 - 0.2 * i as $s); 4];
+        let xs = [SVector::<$s, $nv>::from_fn(|i, _| 0.7 * i as $s - 1.0); 4];
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        for _ in 0..3 {
+            black_box(Robot::DEFAULT.inverse_dynamics_batch(&qs, &qds, black_box(&xs)));
+            black_box(Robot::DEFAULT.forward_dynamics_batch(&qs, &qds, black_box(&xs)));
+            black_box(Robot::DEFAULT.mass_matrix_batch(black_box(&qs)));
+            black_box(Robot::DEFAULT.gravity_batch(black_box(&qs)));
+        }
+        let after = ALLOCATIONS.load(Ordering::SeqCst);
+        assert_eq!(after - before, 0, "{} allocated in a batch", stringify!($m));
+        BATCH_CHECKED.fetch_add(1, Ordering::SeqCst);
+    }};
+}
+
+static BATCH_CHECKED: AtomicUsize = AtomicUsize::new(0);
+
 #[test]
 fn generated_functions_never_allocate() {
     dynamics_tests::with_cases!(no_alloc);
@@ -123,6 +139,8 @@ fn generated_functions_never_allocate() {
     // In the same test: the counter is global, and tests run on parallel threads.
     dynamics_tests::with_frame_cases!(no_alloc_frames);
     assert!(FRAMES_CHECKED.load(Ordering::SeqCst) >= 6);
+    dynamics_tests::with_batch_cases!(no_alloc_batch);
+    assert!(BATCH_CHECKED.load(Ordering::SeqCst) >= 10);
     // The counter works: a Vec does allocate.
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     black_box(vec![1u8; 16]);
