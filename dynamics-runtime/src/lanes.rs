@@ -27,15 +27,23 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     #[inline(always)]
     #[must_use]
     pub fn map(self, f: impl Fn(T) -> T) -> Self {
-        Self(self.0.map(f))
+        let mut out = self.0;
+        for o in &mut out {
+            *o = f(*o);
+        }
+        Self(out)
     }
 
     /// The `K` values of each of the `B` states (`xs[l][k]`, state `l`, coordinate `k`) as `K`
     /// lanes (`out[k].0[l]`): the transpose into structure of arrays. Not inlined: the batch
     /// body then reads whole lanes from memory, which the vectoriser loads as vectors.
+    /// `extern "C"`, so that a caller knows it cannot unwind without seeing its body (which has
+    /// no panic path): a Rust-ABI function left out of line counts as a possible panic for
+    /// `no_panic`.
     #[inline(never)]
     #[must_use]
-    pub fn gather<const K: usize>(xs: [[T; K]; B]) -> [Self; K]
+    #[allow(improper_ctypes_definitions)] // called from Rust only
+    pub extern "C" fn gather<const K: usize>(xs: &[[T; K]; B]) -> [Self; K]
     where
         T: Default,
     {
@@ -45,10 +53,13 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// Columns of lanes (`cols[c][r].0[l]`) back to one `R × C` matrix per state (entry
     /// `(r, c)` of matrix `l`): the transpose out of structure of arrays. Not inlined: the
     /// batch body stores whole lanes, which the vectoriser writes as vectors (strided stores
-    /// of single lanes would leave the body scalar).
+    /// of single lanes would leave the body scalar). `extern "C"` as [`Self::gather`].
     #[inline(never)]
     #[must_use]
-    pub fn scatter<const R: usize, const C: usize>(cols: &[[Self; R]; C]) -> [SMatrix<T, R, C>; B]
+    #[allow(improper_ctypes_definitions)] // called from Rust only
+    pub extern "C" fn scatter<const R: usize, const C: usize>(
+        cols: &[[Self; R]; C],
+    ) -> [SMatrix<T, R, C>; B]
     where
         T: Default + Scalar,
     {
@@ -68,8 +79,15 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
         args: [Self; K],
         f: impl Fn([T; B]) -> ([T; B], [T; B]),
     ) -> ([Self; K], [Self; K]) {
-        let results = args.map(|a| f(a.0));
-        (results.map(|r| Self(r.0)), results.map(|r| Self(r.1)))
+        // Loops rather than `array::map`: a large `f` (the sine-cosine kernel) inside `map`'s
+        // closure machinery was left out of line, and a call the caller cannot see into counts
+        // as a possible panic for `no_panic`.
+        let (mut first, mut second) = (args, args);
+        for ((a, s), c) in args.iter().zip(&mut first).zip(&mut second) {
+            let (x, y) = f(a.0);
+            (s.0, c.0) = (x, y);
+        }
+        (first, second)
     }
 }
 
@@ -150,7 +168,7 @@ mod tests {
     #[test]
     fn gather_and_scatter_are_transposes() {
         let states = [[1.0f64, 2.0], [3.0, 4.0], [5.0, 6.0]];
-        let lanes = Lanes::gather(states);
+        let lanes = Lanes::gather(&states);
         assert_eq!(lanes[0].0, [1.0, 3.0, 5.0]);
         assert_eq!(lanes[1].0, [2.0, 4.0, 6.0]);
         let back = Lanes::scatter(&[lanes]);

@@ -286,7 +286,7 @@ impl FunctionBody<'_> {
             stmts.extend(if self.lanes.is_some() {
                 let lanes = self.lanes_ty();
                 quote! {
-                    let [#(#names),*] = #lanes::gather(#arg_ident.each_ref().map(|v| {
+                    let [#(#names),*] = #lanes::gather(&#arg_ident.each_ref().map(|v| {
                         let [c] = v.data.0;
                         c
                     }));
