@@ -5,8 +5,10 @@
 // run.sh writes with Pinocchio's Python package (URDF -> Model::saveToBinary), so no Model or Data
 // object crosses between this code and the packaged, differently compiled libraries.
 //
-// usage: pinocchio_bench [--calls N] [--reps R] name=model.bin ...
+// usage: pinocchio_bench [--calls N] [--reps R] [--count ALGO] name=model.bin ...
 // output: one line per (robot, algorithm): "robot nv algorithm median_ns min_ns"
+// --count ALGO: no timing and no warm-up, only N calls of ALGO, for instruction counts under
+// callgrind (run.sh with CALLGRIND=1 takes the difference of two call counts).
 
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
@@ -54,6 +56,7 @@ int main(int argc, char ** argv)
 {
   long calls = 100000;
   int reps = 5;
+  std::string count;
   std::vector<std::pair<std::string, std::string>> robots;
   for (int i = 1; i < argc; ++i)
   {
@@ -62,6 +65,8 @@ int main(int argc, char ** argv)
       calls = std::atol(argv[++i]);
     else if (s == "--reps" && i + 1 < argc)
       reps = std::atoi(argv[++i]);
+    else if (s == "--count" && i + 1 < argc)
+      count = argv[++i];
     else if (s.find('=') != std::string::npos)
       robots.push_back({s.substr(0, s.find('=')), s.substr(s.find('=') + 1)});
     else
@@ -109,6 +114,8 @@ int main(int argc, char ** argv)
     }
     const std::vector<std::pair<const char *, std::function<double(long)>>> algos = {
       {"rnea", [&](long i) { const int k = i & (K - 1); return pinocchio::rnea(model, data, q[k], v[k], a[k])[0]; }},
+      // c(q, v) + g(q): rnea at zero acceleration
+      {"nle", [&](long i) { const int k = i & (K - 1); return pinocchio::nonLinearEffects(model, data, q[k], v[k])[0]; }},
       // upper triangle only, as Pinocchio leaves it
       {"crba", [&](long i) { const int k = i & (K - 1); return pinocchio::crba(model, data, q[k])(0, n - 1); }},
       {"gravity", [&](long i) { const int k = i & (K - 1); return pinocchio::computeGeneralizedGravity(model, data, q[k])[0]; }},
@@ -140,6 +147,17 @@ int main(int argc, char ** argv)
     };
     for (const auto & al : algos)
     {
+      if (!count.empty())
+      {
+        if (count != al.first)
+          continue;
+        double sum = 0;
+        for (long i = 0; i < calls; ++i)
+          sum += al.second(i);
+        g_sink = g_sink + sum;
+        std::printf("%-16s %3d %-8s %ld calls\n", rp.first.c_str(), n, al.first, calls);
+        continue;
+      }
       const auto r = time_it(calls, reps, al.second);
       std::printf("%-16s %3d %-8s %10.1f %10.1f\n", rp.first.c_str(), n, al.first, r.first, r.second);
       std::fflush(stdout);

@@ -8,7 +8,9 @@
 # CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR, CODEGEN=1 (also
 # Pinocchio's code-generated derivatives, bench/run_codegen.sh, fixed-base robots), NATIVE (1, the default:
 # our code compiled for this CPU with RUSTFLAGS="-C target-cpu=native", as Pinocchio is with -march=native,
-# into target/bench-native; 0: for the toolchain's default target CPU, into target/bench-default).
+# into target/bench-native; 0: for the toolchain's default target CPU, into target/bench-default),
+# CALLGRIND=1 (with NATIVE=0: also instructions per call of both sides under valgrind's callgrind,
+# Pinocchio compiled a second time for the default x86-64 target, as valgrind does not decode AVX-512).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -20,6 +22,10 @@ ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_
 CALLS=${CALLS:-100000}
 REPS=${REPS:-5}
 mkdir -p "$CACHE/models"
+if [ "${CALLGRIND:-0}" = 1 ]; then
+  [ "${NATIVE:-1}" = 0 ] || { echo "CALLGRIND=1 needs NATIVE=0 (valgrind does not decode this CPU's AVX-512)" >&2; exit 1; }
+  command -v valgrind >/dev/null || { echo "CALLGRIND=1 needs valgrind" >&2; exit 1; }
+fi
 
 # 1. Pinocchio: venv, models (URDF -> binary via the Python package), native build, timing.
 [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
@@ -82,7 +88,7 @@ CRIT=$CARGO_TARGET_DIR/criterion
 "$VENV/bin/python" - "$CACHE/pinocchio.txt" "$CRIT" "$START" <<'EOF'
 import json, os, sys
 pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])
-ours = {"rnea": "inverse_dynamics", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics",
+ours = {"rnea": "inverse_dynamics", "nle": "coriolis", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics",
         "rnea_derivatives": "inverse_dynamics_derivatives", "aba_derivatives": "forward_dynamics_with_derivatives",
         "minverse": "mass_matrix_inverse", "gravity_derivatives": "gravity_derivative",
         "cg_rnea_derivatives": "inverse_dynamics_derivatives",
@@ -115,3 +121,36 @@ if rows:
     print(f"\n{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}")
     print("\n".join(rows))
 EOF
+
+# 5. With CALLGRIND=1: instructions per call, both sides built for the default x86-64 target. Each
+# program runs at 1,024 and 2,048 calls; the difference of the counts over 1,024 is the cost of a
+# call, with start-up and set-up cancelled (every state is called once in the difference).
+if [ "${CALLGRIND:-0}" = 1 ]; then
+  PBIN=$CACHE/pinocchio_bench_x86-64
+  if [ ! -x "$PBIN" ] || [ "$HERE/pinocchio_bench.cpp" -nt "$PBIN" ]; then
+    echo "compiling bench/pinocchio_bench.cpp for the default x86-64 target (a few minutes) ..." >&2
+    ${CXX:-g++} -std=c++17 -O3 -DNDEBUG -Wno-deprecated-declarations -Wno-stringop-overread \
+      -I"$P/include" -I"$P/include/eigen3" -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
+      -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 "$HERE/pinocchio_bench.cpp" -o "$PBIN.tmp" \
+      -L"$P/lib" -Wl,-rpath,"$P/lib" -lboost_serialization
+    mv "$PBIN.tmp" "$PBIN"
+  fi
+  (cd "$ROOT" && cargo build -q --release -p dynamics-tests --example calls)
+  EX=$CARGO_TARGET_DIR/release/examples/calls
+  instr() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
+  per_call() { # program args with the call count last or as --calls
+    local a b; a=$(instr "$@" 1024) || return 1; b=$(instr "$@" 2048) || return 1
+    [ -n "$a" ] && [ -n "$b" ] && echo $(( (b - a) / 1024 ))
+  }
+  echo
+  printf '%-16s %-20s %12s %12s %7s\n' robot "algorithm (x86-64)" pin_instr ours_instr ratio
+  for i in "${!NAMES[@]}"; do
+    name=${NAMES[$i]}; model=${ARGS[$i]}
+    for algo in rnea nle crba gravity aba rnea_derivatives aba_derivatives minverse gravity_derivatives; do
+      pin=$(per_call "$PBIN" --count "$algo" "$model" --calls) || pin=
+      ours=$(per_call "$EX" "$name" "$algo") || ours=
+      [ -n "$pin" ] && [ -n "$ours" ] || continue
+      printf '%-16s %-20s %12d %12d %6.1fx\n' "$name" "$algo" "$pin" "$ours" "$(awk "BEGIN { print $pin / $ours }")"
+    done
+  done
+fi

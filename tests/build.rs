@@ -502,7 +502,7 @@ fn main() {
              pub struct {name};\n\
              impl {name} {{\n{helper}\n\
              /// Calls the helper.\n\
-             pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos(x) }}\n}}"
+             pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos::<K, K>(x) }}\n}}"
         )
         .expect("writing to a String");
     }

@@ -7,72 +7,90 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_model::LoadOptions;
+use dynamics_tests::bench::{states, STATES};
 use nalgebra::{SVector, Vector6};
 use std::hint::black_box;
+
+/// Times `f` on the states in turn, one per iteration (each through `black_box`).
+fn cycled<S, O>(b: &mut criterion::Bencher<'_>, states: &[S], mut f: impl FnMut(&S) -> O) {
+    assert_eq!(states.len(), STATES);
+    let mut k = 0;
+    b.iter(|| {
+        // `STATES` is a power of two: a mask, not a division, per iteration.
+        k = (k + 1) & (STATES - 1);
+        f(black_box(&states[k]))
+    });
+}
 
 macro_rules! bench_robot {
     ($c:expr, $label:literal, $m:ident, $nq:literal, $nv:literal, $robot:expr) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
         let robot = $robot;
         // (On a floating base q[3..7] is a quaternion: normalised inside, any length goes.)
-        let q = SVector::<f64, $nq>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
-        let qd = SVector::<f64, $nv>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
-        let qdd = SVector::<f64, $nv>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
-        let tau = Gen.inverse_dynamics(&q, &qd, &qdd);
-        let (qs, qds, qdds, taus) = (q.as_slice(), qd.as_slice(), qdd.as_slice(), tau.as_slice());
+        let states = states::<$nq, $nv>(|q, qd, qdd| Gen.inverse_dynamics(q, qd, qdd));
         let g = robot.gravity;
         let z = Vector6::zeros();
         let mut group = $c.benchmark_group($label);
         group.bench_function("generated/inverse_dynamics", |b| {
-            b.iter(|| Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&qdd)))
+            cycled(b, &states, |s| {
+                Gen.inverse_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.qdd))
+            })
         });
         group.bench_function("reference/inverse_dynamics", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 dynamics_reference::inverse_dynamics(
                     &robot,
-                    black_box(qs),
-                    black_box(qds),
-                    black_box(qdds),
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.qdd.as_slice()),
                     &g,
                     &z,
                 )
             })
         });
         group.bench_function("generated/mass_matrix", |b| {
-            b.iter(|| Gen.mass_matrix(black_box(&q)))
+            cycled(b, &states, |s| Gen.mass_matrix(black_box(&s.q)))
         });
         group.bench_function("reference/mass_matrix", |b| {
-            b.iter(|| dynamics_reference::mass_matrix(&robot, black_box(qs)))
+            cycled(b, &states, |s| {
+                dynamics_reference::mass_matrix(&robot, black_box(s.q.as_slice()))
+            })
         });
         group.bench_function("generated/gravity", |b| {
-            b.iter(|| Gen.gravity(black_box(&q)))
+            cycled(b, &states, |s| Gen.gravity(black_box(&s.q)))
         });
         group.bench_function("generated/coriolis", |b| {
-            b.iter(|| Gen.coriolis(black_box(&q), black_box(&qd)))
+            cycled(b, &states, |s| {
+                Gen.coriolis(black_box(&s.q), black_box(&s.qd))
+            })
         });
         // One call for M and h = c + g, against two (M, then h as τ at q̈ = 0).
         let zero = SVector::<f64, $nv>::zeros();
         group.bench_function("generated/mass_matrix_and_bias", |b| {
-            b.iter(|| Gen.mass_matrix_and_bias(black_box(&q), black_box(&qd)))
+            cycled(b, &states, |s| {
+                Gen.mass_matrix_and_bias(black_box(&s.q), black_box(&s.qd))
+            })
         });
         group.bench_function("generated/mass_matrix+bias_two_calls", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 (
-                    Gen.mass_matrix(black_box(&q)),
-                    Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&zero)),
+                    Gen.mass_matrix(black_box(&s.q)),
+                    Gen.inverse_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&zero)),
                 )
             })
         });
         group.bench_function("generated/forward_dynamics", |b| {
-            b.iter(|| Gen.forward_dynamics(black_box(&q), black_box(&qd), black_box(&tau)))
+            cycled(b, &states, |s| {
+                Gen.forward_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.tau))
+            })
         });
         group.bench_function("reference/forward_dynamics", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 dynamics_reference::forward_dynamics(
                     &robot,
-                    black_box(qs),
-                    black_box(qds),
-                    black_box(taus),
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.tau.as_slice()),
                     &g,
                     &z,
                 )
@@ -86,56 +104,61 @@ macro_rules! bench_robot {
 macro_rules! bench_derivatives {
     ($c:expr, $label:literal, $m:ident, $nq:literal, $nv:literal) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
-        let q = SVector::<f64, $nq>::from_fn(|i, _| 0.3 + 0.2 * i as f64);
-        let qd = SVector::<f64, $nv>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
-        let qdd = SVector::<f64, $nv>::from_fn(|i, _| -0.4 + 0.15 * i as f64);
-        let tau = Gen.inverse_dynamics(&q, &qd, &qdd);
+        let states = states::<$nq, $nv>(|q, qd, qdd| Gen.inverse_dynamics(q, qd, qdd));
         let mut group = $c.benchmark_group($label);
         group.bench_function("generated/inverse_dynamics_derivatives", |b| {
-            b.iter(|| {
-                Gen.inverse_dynamics_derivatives(black_box(&q), black_box(&qd), black_box(&qdd))
+            cycled(b, &states, |s| {
+                Gen.inverse_dynamics_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.qdd),
+                )
             })
         });
         group.bench_function("generated/inverse_dynamics_with_derivatives", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 Gen.inverse_dynamics_with_derivatives(
-                    black_box(&q),
-                    black_box(&qd),
-                    black_box(&qdd),
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.qdd),
                 )
             })
         });
         group.bench_function("generated/inverse_dynamics+derivatives_two_calls", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 (
-                    Gen.inverse_dynamics(black_box(&q), black_box(&qd), black_box(&qdd)),
+                    Gen.inverse_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.qdd)),
                     Gen.inverse_dynamics_derivatives(
-                        black_box(&q),
-                        black_box(&qd),
-                        black_box(&qdd),
+                        black_box(&s.q),
+                        black_box(&s.qd),
+                        black_box(&s.qdd),
                     ),
                 )
             })
         });
         group.bench_function("generated/forward_dynamics_derivatives", |b| {
-            b.iter(|| {
-                Gen.forward_dynamics_derivatives(black_box(&q), black_box(&qd), black_box(&tau))
+            cycled(b, &states, |s| {
+                Gen.forward_dynamics_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.tau),
+                )
             })
         });
         group.bench_function("generated/forward_dynamics_with_derivatives", |b| {
-            b.iter(|| {
+            cycled(b, &states, |s| {
                 Gen.forward_dynamics_with_derivatives(
-                    black_box(&q),
-                    black_box(&qd),
-                    black_box(&tau),
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.tau),
                 )
             })
         });
         group.bench_function("generated/mass_matrix_inverse", |b| {
-            b.iter(|| Gen.mass_matrix_inverse(black_box(&q)))
+            cycled(b, &states, |s| Gen.mass_matrix_inverse(black_box(&s.q)))
         });
         group.bench_function("generated/gravity_derivative", |b| {
-            b.iter(|| Gen.gravity_derivative(black_box(&q)))
+            cycled(b, &states, |s| Gen.gravity_derivative(black_box(&s.q)))
         });
         group.finish();
     }};

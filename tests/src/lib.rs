@@ -644,6 +644,8 @@ fn to_dm<T: Real + nalgebra::Scalar, const R: usize, const C: usize>(
 }
 
 /// The generated modules, [`CASES`] and [`DERIVATIVE_CASES`].
+pub mod bench;
+
 pub mod generated {
     #![allow(missing_docs)]
     use super::{homogeneous, to_d, to_dm, to_s, Real};

@@ -398,17 +398,11 @@ impl FunctionBody<'_> {
                 c_pats.push(self.trig_pattern(&mut bind, &mut defined, c, cos));
                 trig_done[t] = true;
             }
-            // Padded with zeros to a whole number of vector registers (4 f64 or 8 f32 lanes
-            // of AVX2): the vectoriser leaves a loop of 7 or 6 scalar, and 8 costs the same
-            // as 4 + 3 without the tail.
-            let lanes = match self.scalar {
-                Scalar::F64 => 4,
-                Scalar::F32 => 8,
-            };
-            while args.len() % lanes != 0 && args.len() > 1 && self.lanes.is_none() {
-                args.push(float_tokens(0.0, self.scalar));
-                s_pats.push(quote!(_));
-                c_pats.push(quote!(_));
+            // The helper pads the angles to a whole number of the target's vector registers
+            // (`sin_cos_lanes`) and returns that many: the patterns end in `..`.
+            if args.len() > 1 {
+                s_pats.push(quote!(..));
+                c_pats.push(quote!(..));
             }
             let call = self.sin_cos_call(&args);
             body.push(Statement {
@@ -651,9 +645,12 @@ impl FunctionBody<'_> {
     fn sin_cos_call(&self, args: &[TokenStream]) -> TokenStream {
         if self.lanes.is_some() {
             let lanes = self.lanes_ty();
-            quote!(#lanes::each2([#(#lanes::from(#args)),*], Self::joint_sin_cos))
+            quote!(#lanes::each2([#(#lanes::from(#args)),*], Self::joint_sin_cos::<B, B>))
+        } else if args.len() == 1 {
+            quote!(Self::joint_sin_cos::<1, 1>([#(#args),*]))
         } else {
-            quote!(Self::joint_sin_cos([#(#args),*]))
+            let k = proc_macro2::Literal::usize_unsuffixed(args.len());
+            quote!(Self::joint_sin_cos::<#k, { Self::sin_cos_lanes(#k) }>([#(#args),*]))
         }
     }
 

@@ -1152,7 +1152,7 @@ fn retain_selected(
     Ok(())
 }
 
-/// Removes `mul_add` and `joint_sin_cos` where no function calls them.
+/// Removes `mul_add`, `joint_sin_cos` and `sin_cos_lanes` where no function calls them.
 fn finish_helpers(item: &mut syn::ItemImpl) {
     // `mul_add` and `joint_sin_cos` stay while a function calls them.
     let bodies: Vec<(String, String)> = item
@@ -1174,6 +1174,7 @@ fn finish_helpers(item: &mut syn::ItemImpl) {
     let keep = [
         ("mul_add", called("mul_add")),
         ("joint_sin_cos", called("joint_sin_cos")),
+        ("sin_cos_lanes", called("sin_cos_lanes")),
     ];
     item.items.retain(|it| match it {
         syn::ImplItem::Fn(f) => keep

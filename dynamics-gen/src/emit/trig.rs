@@ -1,8 +1,10 @@
 //! The `joint_sin_cos` helper of a generated impl: the sine and cosine of every joint angle at
 //! once, with no call into the platform's or `libm`'s trigonometry on the normal path.
 //!
-//! For each element x (a loop over a fixed-size array with no branches, so that LLVM
-//! vectorises it across the joints):
+//! The angles are padded with zeros to a whole number of the target's vector registers
+//! (`sin_cos_lanes`, chosen by `cfg!(target_feature)` where the generated code is compiled:
+//! a fixed padding to 4 f64 lanes had SSE2 compute 8 lanes for 5 angles). For each element x (a loop over a fixed-size array with no
+//! branches, so that LLVM vectorises it across the joints):
 //!
 //! 1. **Range reduction** (Cody–Waite): k = round(x · 2/π) by adding and subtracting
 //!    1.5 · 2^p (p the mantissa width; the quadrant k mod 4 is then the low bits of the sum's
@@ -102,12 +104,16 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 .collect(),
         ),
     };
-    let sin_poly: Vec<TokenStream> = sin_c.iter().map(|&c| lit(c)).collect();
-    let cos_poly: Vec<TokenStream> = cos_c.iter().map(|&c| lit(c)).collect();
-    let (sin_len, cos_len) = (
-        proc_macro2::Literal::usize_unsuffixed(sin_c.len()),
-        proc_macro2::Literal::usize_unsuffixed(cos_c.len()),
-    );
+    // c₀ + z·(c₁ + z·(…)), from the highest coefficient (a fold from 0.0 costs a multiply
+    // and an add, 0·z not being foldable in IEEE arithmetic).
+    let horner = |c: &[f64]| {
+        c.iter()
+            .rev()
+            .map(|&c| lit(c))
+            .reduce(|p, c| quote!((#c + z * #p)))
+            .expect("polynomials have coefficients")
+    };
+    let (sin_horner, cos_horner) = (horner(&sin_c), horner(&cos_c));
     let sign_shift = proc_macro2::Literal::u32_unsuffixed(sign_shift);
     let frac_2_pi = lit(std::f64::consts::FRAC_2_PI);
     let round = lit(round);
@@ -144,19 +150,36 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     } else {
         " beyond that bound, and for infinities, the platform's `sin_cos`."
     };
+    // Lanes of AVX-512, AVX and 128-bit vectors (SSE2, the x86-64 default; NEON).
+    let (wide, mid, narrow) = match scalar {
+        Scalar::F64 => (8usize, 4usize, 2usize),
+        Scalar::F32 => (16, 8, 4),
+    };
+    let lanes_doc = format!(
+        " `k` rounded up to a whole number of vector registers of the compilation target ({wide} \
+         `{t}` lanes with AVX-512, {mid} with AVX, {narrow} otherwise: SSE2, the x86-64 default, or \
+         NEON): the length [`Self::joint_sin_cos`] computes `k` angles on, so that its loop \
+         vectorises with no scalar tail and no more padding than the target needs."
+    );
     quote! {
         /// `(sin x_i, cos x_i)` of every element: Cody–Waite reduction by π/2 in double-length
         /// arithmetic, polynomials on [−π/4, π/4], and the quadrant by selects, one
         /// branch-free loop that vectorises across the elements;
         #[doc = #doc_bound]
         #[doc = #doc_fallback]
+        /// The `K` elements are padded with zeros to `P` (`P ≥ K`; `sin_cos_lanes(K)`, a whole
+        /// number of the target's vector registers), and `P` results returned.
         #[inline(always)]
-        fn joint_sin_cos<const K: usize>(x: [#t; K]) -> ([#t; K], [#t; K]) {
-            // sin r = r + r·z·P(z), cos r = 1 − z/2 + z²·Q(z), z = r².
-            const SIN: [#t; #sin_len] = [#(#sin_poly),*];
-            const COS: [#t; #cos_len] = [#(#cos_poly),*];
-            let mut sin = [0.0; K];
-            let mut cos = [0.0; K];
+        fn joint_sin_cos<const K: usize, const P: usize>(x: [#t; K]) -> ([#t; P], [#t; P]) {
+            let x = {
+                let mut padded = [0.0; P];
+                for (p, x) in padded.iter_mut().zip(x) {
+                    *p = x;
+                }
+                padded
+            };
+            let mut sin = [0.0; P];
+            let mut cos = [0.0; P];
             for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()) {
                 let y = x * #frac_2_pi + #round;
                 let k = y - #round;
@@ -166,11 +189,12 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 let l = (#(#errors)+*) - k * #last;
                 let r = h + l;
                 let l = l - (r - h);
+                // sin r = r + r·z·P(z), cos r = 1 − z/2 + z²·Q(z), z = r², P and Q by Horner.
                 let z = r * r;
-                let s = r + r * z * SIN.iter().rev().fold(0.0, |p, &c| p * z + c);
+                let s = r + r * z * #sin_horner;
                 let hz = 0.5 * z;
                 let w = 1.0 - hz;
-                let c = w + (((1.0 - w) - hz) + z * z * COS.iter().rev().fold(0.0, |p, &c| p * z + c));
+                let c = w + (((1.0 - w) - hz) + z * z * #cos_horner);
                 let (s, c) = (s + l * c, c - l * s);
                 let (s, c) = if n & 1 == 0 { (s, c) } else { (c, s) };
                 *sin = #t::from_bits(s.to_bits() ^ ((n & 2) << #sign_shift));
@@ -182,6 +206,19 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 }
             }
             (sin, cos)
+        }
+
+        #[doc = #lanes_doc]
+        #[inline(always)]
+        const fn sin_cos_lanes(k: usize) -> usize {
+            let lanes = if cfg!(target_feature = "avx512f") {
+                #wide
+            } else if cfg!(target_feature = "avx") {
+                #mid
+            } else {
+                #narrow
+            };
+            k.div_ceil(lanes) * lanes
         }
     }
 }

@@ -1,0 +1,96 @@
+//! `N` calls of one generated function on the benchmark states (`dynamics_tests::bench`), for
+//! instruction counts under callgrind: `bench/run.sh` with `CALLGRIND=1` runs it at two values
+//! of `N` and divides the difference of the counts by the difference of the calls, so that
+//! start-up and the states' set-up cancel.
+//!
+//! ```text
+//! cargo run --release -p dynamics-tests --example calls -- ur5 inverse_dynamics 1000
+//! ```
+//!
+//! Functions are named as Pinocchio's benchmark names its algorithms: `rnea`
+//! (`inverse_dynamics`), `nle` (`coriolis`, c + g), `crba` (`mass_matrix`), `gravity`, `aba`
+//! (`forward_dynamics`), and, for the robots generated with them, `rnea_derivatives`
+//! (`inverse_dynamics_derivatives`), `aba_derivatives` (`forward_dynamics_with_derivatives`),
+//! `minverse` (`mass_matrix_inverse`) and `gravity_derivatives` (`gravity_derivative`).
+
+use dynamics_tests::bench::{states, STATES};
+use std::hint::black_box;
+use std::process::ExitCode;
+
+/// Calls `function` of module `$m` `n` times, cycling through the states; `None` if it has
+/// no function of that name.
+macro_rules! run {
+    ($m:ident, $nq:literal, $nv:literal, $function:expr, $n:expr, $($derivatives:tt)?) => {{
+        use dynamics_tests::generated::$m::Robot as Gen;
+        let states = states::<$nq, $nv>(|q, qd, qdd| Gen.inverse_dynamics(q, qd, qdd));
+        let mut sum = 0.0;
+        let mut each = |f: &dyn Fn(&dynamics_tests::bench::State<$nq, $nv>) -> f64| {
+            for i in 0..$n {
+                sum += f(black_box(&states[i & (STATES - 1)]));
+            }
+        };
+        let found = match $function {
+            "rnea" => { each(&|s| Gen.inverse_dynamics(&s.q, &s.qd, &s.qdd)[0]); true }
+            "nle" => { each(&|s| Gen.coriolis(&s.q, &s.qd)[0]); true }
+            "crba" => { each(&|s| Gen.mass_matrix(&s.q)[(0, $nv - 1)]); true }
+            "gravity" => { each(&|s| Gen.gravity(&s.q)[0]); true }
+            "aba" => { each(&|s| Gen.forward_dynamics(&s.q, &s.qd, &s.tau)[0]); true }
+            $(
+            // (`$derivatives` only marks the robots generated with the derivative functions.)
+            "rnea_derivatives" if !stringify!($derivatives).is_empty() => {
+                each(&|s| {
+                    let (dq, dv) = Gen.inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd);
+                    dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
+                });
+                true
+            }
+            "aba_derivatives" => {
+                each(&|s| {
+                    let (a, dq, dv, _) = Gen.forward_dynamics_with_derivatives(&s.q, &s.qd, &s.tau);
+                    a[0] + dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
+                });
+                true
+            }
+            "minverse" => { each(&|s| Gen.mass_matrix_inverse(&s.q)[(0, $nv - 1)]); true }
+            "gravity_derivatives" => { each(&|s| Gen.gravity_derivative(&s.q)[($nv - 1, 0)]); true }
+            )?
+            _ => false,
+        };
+        found.then_some(sum)
+    }};
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let [robot, function, n] = args.as_slice() else {
+        eprintln!("usage: calls ROBOT FUNCTION N (robots: ur5 panda rand7 talos_upper_body solo12 g1_29dof)");
+        return ExitCode::from(2);
+    };
+    let Ok(n) = n.parse::<usize>() else {
+        eprintln!("N must be a number of calls, not {n:?}");
+        return ExitCode::from(2);
+    };
+    let f = function.as_str();
+    let sum = match robot.as_str() {
+        "ur5" => run!(urdf_ur5, 6, 6, f, n, derivatives),
+        "panda" => run!(urdf_panda, 7, 7, f, n, derivatives),
+        "rand7" => run!(urdf_rand7, 7, 7, f, n, derivatives),
+        "solo12" => run!(tree_solo12, 19, 18, f, n, derivatives),
+        "talos_upper_body" => run!(tree_talos_upper_body, 20, 20, f, n,),
+        "g1_29dof" => run!(tree_g1_29dof, 36, 35, f, n,),
+        other => {
+            eprintln!("no robot {other:?} (ur5 panda rand7 talos_upper_body solo12 g1_29dof)");
+            return ExitCode::from(2);
+        }
+    };
+    match sum {
+        Some(sum) => {
+            println!("{robot} {function} {n} calls (sum {sum:.3e})");
+            ExitCode::SUCCESS
+        }
+        None => {
+            eprintln!("{robot} has no function {function:?} here");
+            ExitCode::from(2)
+        }
+    }
+}
