@@ -501,8 +501,12 @@ fn main() {
             "/// The generated `joint_sin_cos` ({t}, no_std {no_std}).\n\
              pub struct {name};\n\
              impl {name} {{\n{helper}\n\
-             /// Calls the helper.\n\
-             pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos::<K, K>(x) }}\n}}"
+             /// Calls the helper, unpadded.\n\
+             pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos::<K, K>(x) }}\n\
+             /// Calls the helper, padded to `P` as the generated functions call it.\n\
+             pub fn sin_cos_padded<const K: usize, const P: usize>(x: [{t}; K]) -> ([{t}; P], [{t}; P]) {{ Self::joint_sin_cos::<K, P>(x) }}\n\
+             /// The padded length of `k` angles for the compilation target.\n\
+             pub const fn lanes(k: usize) -> usize {{ Self::sin_cos_lanes(k) }}\n}}"
         )
         .expect("writing to a String");
     }

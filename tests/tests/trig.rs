@@ -207,3 +207,43 @@ fn beyond_the_range_and_special_values() {
         assert!(s[2].is_nan() && c[2].is_nan() && s[3].is_nan() && c[3].is_nan());
     }
 }
+
+/// The generated functions call the helper with their angles padded to the target's vector
+/// width (`sin_cos_lanes`): a whole number of registers, at most one register more than the
+/// angles, and the first `K` results the same bits as unpadded.
+#[test]
+fn padding_to_the_target_width_changes_no_result() {
+    let width = if cfg!(target_feature = "avx512f") {
+        8
+    } else if cfg!(target_feature = "avx") {
+        4
+    } else {
+        2
+    };
+    for k in 1..=40 {
+        let p = F64Std::lanes(k);
+        assert!(
+            p >= k && p % width == 0 && p < k + width,
+            "f64: {k} angles padded to {p}"
+        );
+        let p = F32Std::lanes(k);
+        assert!(
+            p >= k && p % (2 * width) == 0 && p < k + 2 * width,
+            "f32: {k} angles padded to {p}"
+        );
+    }
+    let x = [0.3, -2.0, 1e5, 7.5, -0.001];
+    let (s, c) = F64Std::sin_cos(x);
+    let (sp, cp) = F64Std::sin_cos_padded::<5, { F64Std::lanes(5) }>(x);
+    assert_eq!((&sp[..5], &cp[..5]), (&s[..], &c[..]));
+    let (s, c) = F64NoStd::sin_cos(x);
+    let (sp, cp) = F64NoStd::sin_cos_padded::<5, { F64NoStd::lanes(5) }>(x);
+    assert_eq!((&sp[..5], &cp[..5]), (&s[..], &c[..]));
+    let x = x.map(|v| v as f32);
+    let (s, c) = F32Std::sin_cos(x);
+    let (sp, cp) = F32Std::sin_cos_padded::<5, { F32Std::lanes(5) }>(x);
+    assert_eq!((&sp[..5], &cp[..5]), (&s[..], &c[..]));
+    let (s, c) = F32NoStd::sin_cos(x);
+    let (sp, cp) = F32NoStd::sin_cos_padded::<5, { F32NoStd::lanes(5) }>(x);
+    assert_eq!((&sp[..5], &cp[..5]), (&s[..], &c[..]));
+}
