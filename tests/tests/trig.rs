@@ -223,12 +223,12 @@ fn padding_to_the_target_width_changes_no_result() {
     for k in 1..=40 {
         let p = F64Std::lanes(k);
         assert!(
-            p >= k && p % width == 0 && p < k + width,
+            p >= k && p.is_multiple_of(width) && p < k + width,
             "f64: {k} angles padded to {p}"
         );
         let p = F32Std::lanes(k);
         assert!(
-            p >= k && p % (2 * width) == 0 && p < k + 2 * width,
+            p >= k && p.is_multiple_of(2 * width) && p < k + 2 * width,
             "f32: {k} angles padded to {p}"
         );
     }
