@@ -3,8 +3,9 @@
 //!
 //! The angles are padded with zeros to a whole number of the target's vector registers
 //! (`sin_cos_lanes`, chosen by `cfg!(target_feature)` where the generated code is compiled:
-//! a fixed padding to 4 f64 lanes had SSE2 compute 8 lanes for 5 angles). For each element x (a loop over a fixed-size array with no
-//! branches, so that LLVM vectorises it across the joints):
+//! a fixed padding to 4 f64 lanes had SSE2 compute 8 lanes for 5 angles). For each element x
+//! (a loop over a fixed-size array with no branches, so that LLVM vectorises it across the
+//! joints):
 //!
 //! 1. **Range reduction** (Cody–Waite): k = round(x · 2/π) by adding and subtracting
 //!    1.5 · 2^p (p the mantissa width; the quadrant k mod 4 is then the low bits of the sum's
