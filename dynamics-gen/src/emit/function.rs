@@ -122,6 +122,106 @@ struct Statement {
     reads: Vec<ExprId>,
 }
 
+/// `body` in the demand-driven order of [`super::schedule`], with `last_use` (the index of
+/// the last statement reading each named node; `usize::MAX` for the outputs') renumbered to
+/// it; `output_reads` are the named nodes the outputs read, in output order.
+fn reorder(
+    body: Vec<Statement>,
+    output_reads: &[ExprId],
+    last_use: &mut [usize],
+) -> Vec<Statement> {
+    use super::schedule::{demand_order, Deps};
+    let mut defined_by = vec![usize::MAX; last_use.len()];
+    for (k, s) in body.iter().enumerate() {
+        for &(_, id) in &s.defined {
+            defined_by[id.index()] = k;
+        }
+    }
+    let statement = |id: &ExprId| Some(defined_by[id.index()]).filter(|&k| k != usize::MAX);
+    let deps: Vec<Deps> = body
+        .iter()
+        .map(|s| Deps {
+            reads: s.reads.iter().filter_map(statement).collect(),
+        })
+        .collect();
+    let roots: Vec<usize> = output_reads.iter().filter_map(statement).collect();
+    let order = demand_order(&deps, &roots);
+    let mut slots: Vec<Option<Statement>> = body.into_iter().map(Some).collect();
+    let body: Vec<Statement> = order
+        .iter()
+        .map(|&k| slots[k].take().expect("a permutation"))
+        .collect();
+    for (at, s) in body.iter().enumerate() {
+        for &id in &s.reads {
+            let l = &mut last_use[id.index()];
+            if *l != usize::MAX {
+                *l = at;
+            }
+        }
+    }
+    body
+}
+
+/// `value` with the temporaries (`t0`, `t1`, …, numbered in creation order) renamed in the
+/// order the statements of `body` now define them, as are `body` and `bind`: generated code
+/// reads `t0`, `t1`, … from the top.
+fn renumber(body: &mut [Statement], bind: &mut [Binding], value: TokenStream) -> TokenStream {
+    use std::collections::HashMap;
+    let is_temporary = |name: &str| {
+        name.strip_prefix('t')
+            .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let mut names: HashMap<String, Ident> = HashMap::new();
+    for s in body.iter() {
+        for (name, _) in &s.defined {
+            let name = name.to_string();
+            if is_temporary(&name) {
+                let new = format_ident!("t{}", names.len());
+                names.insert(name, new);
+            }
+        }
+    }
+    if names.iter().all(|(old, new)| *new == old) {
+        return value;
+    }
+    for s in body.iter_mut() {
+        s.tokens = rename(std::mem::take(&mut s.tokens), &names);
+        for (name, _) in &mut s.defined {
+            if let Some(new) = names.get(&name.to_string()) {
+                *name = new.clone();
+            }
+        }
+    }
+    for b in bind.iter_mut() {
+        if let Binding::Named(name) = b {
+            if let Some(new) = names.get(&name.to_string()) {
+                *name = new.clone();
+            }
+        }
+    }
+    rename(value, &names)
+}
+
+/// `tokens` with every identifier that `names` maps replaced.
+fn rename(tokens: TokenStream, names: &std::collections::HashMap<String, Ident>) -> TokenStream {
+    use proc_macro2::{Group, TokenTree};
+    tokens
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Ident(i) => match names.get(&i.to_string()) {
+                Some(new) => TokenTree::Ident(new.clone()),
+                None => TokenTree::Ident(i),
+            },
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), rename(g.stream(), names));
+                new.set_span(g.span());
+                TokenTree::Group(new)
+            }
+            other => other,
+        })
+        .collect()
+}
+
 /// The statements, in blocks of at most [`MAX_BLOCK_LETS`]: `let (x, y, …) = { …; (x, y,
 /// …) };` with the names that later statements or the outputs read. Every `let` opens a
 /// lexical scope nested in the previous one, and the debug info of a function with tens of
@@ -531,6 +631,8 @@ impl FunctionBody<'_> {
         for &o in self.outputs {
             self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
+        let mut body = reorder(body, &reads, &mut last_use);
+        let value = renumber(&mut body, &mut bind, value);
         let split = self
             .self_ty
             .filter(|_| self.lanes.is_none())

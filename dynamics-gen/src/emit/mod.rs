@@ -12,6 +12,7 @@ pub mod function;
 pub mod literal;
 pub mod provenance;
 pub mod regressor;
+pub mod schedule;
 pub mod text;
 pub mod trig;
 
