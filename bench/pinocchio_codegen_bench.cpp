@@ -2,7 +2,10 @@
 // see bench/README.md.  Built and run by bench/run_codegen.sh.
 //
 // For each robot (a binary model file, written from a URDF by Pinocchio's Python package as in
-// bench/run.sh; fixed-base chains of 1-dof joints only) and each of three algorithms
+// bench/run.sh; fixed-base chains of 1-dof joints only) and each of six algorithms
+//   cg_rnea              CodeGenRNEA:            x = (q, v, a)   -> y = tau
+//   cg_crba              CodeGenCRBA:            x = q           -> y = upper triangle of M, row by row
+//   cg_aba               CodeGenABA:             x = (q, v, tau) -> y = qdd
 //   cg_rnea_derivatives  CodeGenRNEADerivatives: x = (q, v, a)   -> y = (dtau/dq, dtau/dv, dtau/da), each nv x nv
 //                        row-major; dtau/da = M with only its upper triangle filled (as Pinocchio leaves it)
 //   cg_aba_derivatives   CodeGenABADerivatives:  x = (q, v, tau) -> y = (dqdd/dq, dqdd/dv, dqdd/dtau = M^-1),
@@ -23,7 +26,7 @@
 //      around the generated C function), cycling through 1024 random states.  The sampler and seed are
 //      those of bench/pinocchio_bench.cpp (q uniform in [-pi, pi], v and a in [-2, 2], tau in [-10, 10],
 //      std::mt19937_64 seeded with 12345).  Median and minimum ns/call over R repetitions of N calls;
-//      the repetitions of the three algorithms of a robot are interleaved so that a change of load on
+//      the repetitions of the six algorithms of a robot are interleaved so that a change of load on
 //      a shared machine hits all of them alike.
 //
 // usage: pinocchio_codegen_bench [--calls N] [--reps R] [--lib-dir DIR] [--cc PATH] [--cflags "FLAGS"]
@@ -43,6 +46,8 @@
 #include <pinocchio/algorithm/aba-derivatives.hpp>
 #include <pinocchio/algorithm/rnea-derivatives.hpp>
 #include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/crba.hpp>
+#include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/serialization.hpp>
 
 #include <algorithm>
@@ -328,6 +333,12 @@ int main(int argc, char ** argv)
     auto pack_qvt = [&](int k, VectorXd & x) { x << q[k], v[k], tau[k]; };
     auto pack_q = [&](int k, VectorXd & x) { x = q[k]; };
     // plain Pinocchio, into zeroed matrices (the parts it leaves untouched stay 0, as in the traced code)
+    auto ref_rnea = [&](int k) { return VectorXd(pinocchio::rnea(model, data, q[k], v[k], a[k])); };
+    auto ref_crba = [&](int k) {
+      data.M.setZero();
+      return upper_rows(pinocchio::crba(model, data, q[k], pinocchio::Convention::WORLD));
+    };
+    auto ref_aba = [&](int k) { return VectorXd(pinocchio::aba(model, data, q[k], v[k], tau[k], pinocchio::Convention::WORLD)); };
     auto ref_rnea_derivatives = [&](int k) {
       MatrixXd dq = MatrixXd::Zero(n, n), dv = MatrixXd::Zero(n, n), da = MatrixXd::Zero(n, n);
       pinocchio::computeRNEADerivatives(model, data, q[k], v[k], a[k], dq, dv, da);
@@ -346,6 +357,9 @@ int main(int argc, char ** argv)
     using namespace pinocchio;
     const std::string dir = lib_dir + "/" + robot;
     std::vector<Timed> ts;
+    ts.push_back(prepare<CodeGenRNEA<double>>(model, robot, "cg_rnea", dir, cc, cflags, K, pack_qva, ref_rnea));
+    ts.push_back(prepare<CodeGenCRBA<double>>(model, robot, "cg_crba", dir, cc, cflags, K, pack_q, ref_crba));
+    ts.push_back(prepare<CodeGenABA<double>>(model, robot, "cg_aba", dir, cc, cflags, K, pack_qvt, ref_aba));
     ts.push_back(prepare<CodeGenRNEADerivatives<double>>(
       model, robot, "cg_rnea_derivatives", dir, cc, cflags, K, pack_qva, ref_rnea_derivatives));
     ts.push_back(prepare<CodeGenABADerivatives<double>>(

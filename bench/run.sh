@@ -6,7 +6,7 @@
 # Environment: ROBOTS (default "ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff";
 # NAME+ff puts the URDF on a free-flyer base), CALLS (100000), REPS (5),
 # CRITERION_ARGS (extra criterion options), SKIP_CARGO=1 (Pinocchio only), CARGO_TARGET_DIR, CODEGEN=1 (also
-# Pinocchio's code-generated derivatives, bench/run_codegen.sh, fixed-base robots), NATIVE (1, the default:
+# Pinocchio's code-generated rnea, crba, aba and derivatives, bench/run_codegen.sh, fixed-base robots), NATIVE (1, the default:
 # our code compiled for this CPU with RUSTFLAGS="-C target-cpu=native", as Pinocchio is with -march=native,
 # into target/bench-native; 0: for the toolchain's default target CPU, into target/bench-default),
 # CALLGRIND=1 (with NATIVE=0: also instructions per call of both sides under valgrind's callgrind,
@@ -60,7 +60,7 @@ done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
 echo "# robot           nv algo     median_ns     min_ns"
 "$BIN" --calls "$CALLS" --reps "$REPS" "${ARGS[@]}" | tee "$CACHE/pinocchio.txt"
-# 1b. With CODEGEN=1: Pinocchio's code-generated derivatives too (bench/run_codegen.sh; fixed-base
+# 1b. With CODEGEN=1: Pinocchio's code-generated rnea, crba, aba and derivatives too (bench/run_codegen.sh; fixed-base
 # robots only; its first run is long, see bench/README.md), in the same table.
 if [ "${CODEGEN:-0}" = 1 ]; then
   CG_ROBOTS=$(for r in $ROBOTS; do [ "${r%+ff}" = "$r" ] && echo "$r"; done | tr '\n' ' ')
@@ -91,6 +91,7 @@ pin_file, crit, start = sys.argv[1], sys.argv[2], float(sys.argv[3])
 ours = {"rnea": "inverse_dynamics", "nle": "coriolis", "crba": "mass_matrix", "gravity": "gravity", "aba": "forward_dynamics",
         "rnea_derivatives": "inverse_dynamics_derivatives", "aba_derivatives": "forward_dynamics_with_derivatives",
         "minverse": "mass_matrix_inverse", "gravity_derivatives": "gravity_derivative",
+        "cg_rnea": "inverse_dynamics", "cg_crba": "mass_matrix", "cg_aba": "forward_dynamics",
         "cg_rnea_derivatives": "inverse_dynamics_derivatives",
         "cg_aba_derivatives": "forward_dynamics_with_derivatives", "cg_minverse": "mass_matrix_inverse"}
 print(f"\n{'robot':<16} {'pinocchio':<19} {'pin_ns':>8} {'ours':<33} {'ours_ns':>8} {'ratio':>6}")

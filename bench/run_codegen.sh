@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Pinocchio's code-generated derivatives (CppADCodeGen) timed on this machine; see bench/README.md.
+# Pinocchio's code-generated rnea, crba, aba and derivatives (CppADCodeGen) timed on this machine; see bench/README.md.
 #   bash bench/run_codegen.sh
 #   ROBOTS="ur5" CALLS=20000 REPS=3 bash bench/run_codegen.sh
 # Environment: ROBOTS (default "ur5 panda rand7": fixed-base URDFs in tests/data/robots or its trees/),
