@@ -20,7 +20,21 @@ struct Case {
     /// Generated with run-time parameters (gravity, a payload on the end effector's link):
     /// registered twice, with their defaults and with [`PAYLOAD`].
     runtime: bool,
+    /// Generated without run-time CPU dispatch (`cpu_dispatch: false`): see [`PORTABLE`].
+    portable: bool,
 }
+
+/// The cases generated a second time without run-time CPU dispatch, as modules
+/// `portable_<case>`: every other std case calls its AVX-512 copy on a CPU that has AVX-512
+/// (such as this project's machines), so these keep the code every other x86-64 CPU runs
+/// under every comparison test: a chain, the Panda, a floating tree with its derivative
+/// functions, and f32.
+const PORTABLE: &[&str] = &[
+    "shipped_ur5",
+    "urdf_panda",
+    "tree_208_f64",
+    "random_104_f32",
+];
 
 /// The cases generated a second time with run-time parameters, as modules `runtime_<case>`:
 /// a chain, a floating tree with its derivative functions, f32 `no_std`, and the
@@ -165,6 +179,7 @@ fn main() {
             no_std: false,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for (name, tip) in [
@@ -190,6 +205,7 @@ fn main() {
             no_std: false,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for (k, &(seed, dof)) in RANDOM.iter().enumerate() {
@@ -207,6 +223,7 @@ fn main() {
             no_std: k % 4 == 1,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for (name, floating) in URDF_TREES {
@@ -224,6 +241,7 @@ fn main() {
             no_std: false,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for (k, &(seed, dof, floating)) in TREES.iter().enumerate() {
@@ -237,6 +255,7 @@ fn main() {
             no_std: k % 4 == 3,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for (k, &(seed, dof, floating)) in MIMIC_TREES.iter().enumerate() {
@@ -255,6 +274,7 @@ fn main() {
             no_std: k == 2,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for name in URDF_MIMIC {
@@ -269,6 +289,7 @@ fn main() {
             no_std: false,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     for &(seed, dof, floating, eps) in ACTUATED {
@@ -284,6 +305,7 @@ fn main() {
                 Some(e) => dynamics_gen::options::Friction::Smooth(e),
             }),
             runtime: false,
+            portable: false,
         });
     }
     {
@@ -301,6 +323,7 @@ fn main() {
             no_std: false,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
     // The same robots in f32 and no_std as well.
@@ -314,6 +337,7 @@ fn main() {
             no_std: true,
             friction: None,
             runtime: false,
+            portable: false,
         });
     }
 
@@ -336,6 +360,18 @@ fn main() {
         let case = Case {
             module: format!("runtime_{module}"),
             runtime: true,
+            ..case.clone()
+        };
+        cases.push(case);
+    }
+    for module in PORTABLE {
+        let case = cases
+            .iter()
+            .find(|c| c.module == *module)
+            .unwrap_or_else(|| panic!("no case {module}"));
+        let case = Case {
+            module: format!("portable_{module}"),
+            portable: true,
             ..case.clone()
         };
         cases.push(case);
@@ -376,6 +412,7 @@ fn main() {
             friction: case.friction,
             functions,
             runtime_parameters: case.runtime,
+            cpu_dispatch: !case.portable,
             method: if case.module.contains("lagrangian_") {
                 dynamics_gen::Method::Lagrangian
             } else {

@@ -70,6 +70,10 @@ pub struct Options {
     /// The link that carries the payload (default: the end effector's link); only with
     /// `runtime_parameters`.
     pub payload_link: Option<String>,
+    /// Run-time CPU dispatch ([`crate::emit::dispatch`], default `true`): in `std` code on
+    /// x86-64, each numeric function gets a second copy compiled for AVX-512, called when the
+    /// CPU has it. `false`: one copy, no `unsafe`, the same results on every x86-64 CPU.
+    pub cpu_dispatch: bool,
 }
 
 /// The friction model of the generated `friction(q̇)`: viscous damping `b q̇` plus Coulomb
@@ -142,6 +146,7 @@ impl Default for Options {
             friction: None,
             method: Method::NewtonEuler,
             runtime_parameters: false,
+            cpu_dispatch: true,
             payload_link: None,
         }
     }

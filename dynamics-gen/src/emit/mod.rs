@@ -7,6 +7,7 @@
 
 pub mod batch;
 pub mod derivatives;
+pub mod dispatch;
 pub mod friction;
 pub mod function;
 pub mod literal;
@@ -546,6 +547,11 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         }
     };
     let impl_block = select_functions(impl_block, &robot, options)?;
+    let impl_block = if options.no_std || !options.cpu_dispatch {
+        impl_block
+    } else {
+        dispatch::apply(impl_block, options.scalar)
+    };
     let impl_block = match &runtime {
         None => impl_block,
         Some(runtime) => {
@@ -1175,6 +1181,7 @@ fn finish_helpers(item: &mut syn::ItemImpl) {
     let keep = [
         ("mul_add", called("mul_add")),
         ("joint_sin_cos", called("joint_sin_cos")),
+        ("sin_cos_n", called("joint_sin_cos")),
         ("sin_cos_lanes", called("sin_cos_lanes")),
     ];
     item.items.retain(|it| match it {

@@ -131,10 +131,10 @@ fn describe(generated: &Generated, options: &Options) -> String {
     let g = robot.gravity;
     let mut parts = vec![
         format!("scalar {}", options.scalar.as_str()),
-        if options.no_std {
-            "no_std (libm)".to_string()
-        } else {
-            "std".to_string()
+        match (options.no_std, options.cpu_dispatch) {
+            (true, _) => "no_std (libm)".to_string(),
+            (false, true) => "std, AVX-512 copies chosen at run time on x86-64".to_string(),
+            (false, false) => "std, no CPU dispatch".to_string(),
         },
         if robot.runtime.gravity {
             format!(

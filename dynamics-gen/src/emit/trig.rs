@@ -172,6 +172,13 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         /// number of the target's vector registers), and `P` results returned.
         #[inline(always)]
         fn joint_sin_cos<const K: usize, const P: usize>(x: [#t; K]) -> ([#t; P], [#t; P]) {
+            Self::sin_cos_n::<K, P>(x, P)
+        }
+
+        /// [`Self::joint_sin_cos`] on the first `n` of the `P` padded elements only (the
+        /// others stay 0): `n` a constant once inlined, the loop's trip count.
+        #[inline(always)]
+        fn sin_cos_n<const K: usize, const P: usize>(x: [#t; K], n: usize) -> ([#t; P], [#t; P]) {
             let x = {
                 let mut padded = [0.0; P];
                 for (p, x) in padded.iter_mut().zip(x) {
@@ -181,7 +188,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
             };
             let mut sin = [0.0; P];
             let mut cos = [0.0; P];
-            for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()) {
+            for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
                 let y = x * #frac_2_pi + #round;
                 let k = y - #round;
                 let n = y.to_bits();
@@ -201,7 +208,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 *sin = #t::from_bits(s.to_bits() ^ ((n & 2) << #sign_shift));
                 *cos = #t::from_bits(c.to_bits() ^ ((n.wrapping_add(1) & 2) << #sign_shift));
             }
-            for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()) {
+            for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
                 if x > #limit || x < -#limit {
                     (*sin, *cos) = #fallback;
                 }

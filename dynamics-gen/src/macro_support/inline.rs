@@ -56,6 +56,8 @@ pub struct Generation {
     pub runtime_parameters: bool,
     /// `payload_link: LINK` (checked against the robot's links).
     pub payload_link: Option<String>,
+    /// `cpu_dispatch: false` (default `true`).
+    pub no_cpu_dispatch: bool,
 }
 
 /// One item of a block: `key: value` or `keyword ARGS { … }`.
@@ -149,6 +151,17 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, Generation), syn::E
                         Some(_) => errors.at(
                             &e.tokens,
                             "`runtime_parameters` is `true` (gravity and a payload become fields of the struct, read at run time) or `false` (the default)",
+                        ),
+                        None => {}
+                    }
+                } else if e.key == "cpu_dispatch" {
+                    match v {
+                        Some(Toml::String(s)) if s == "true" || s == "false" => {
+                            generation.no_cpu_dispatch = s == "false";
+                        }
+                        Some(_) => errors.at(
+                            &e.tokens,
+                            "`cpu_dispatch` is `true` (the default: on x86-64 a copy of each function compiled for AVX-512, chosen at run time) or `false` (one copy, no `unsafe`)",
                         ),
                         None => {}
                     }

@@ -27,6 +27,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         method: args.method,
         runtime_parameters: args.runtime_parameters,
         payload_link: args.payload_link.clone(),
+        cpu_dispatch: !args.no_cpu_dispatch,
     };
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
@@ -62,6 +63,9 @@ fn command(args: &GenerateArgs) -> String {
     }
     if args.no_std {
         words.push("--no-std".into());
+    }
+    if args.no_cpu_dispatch {
+        words.push("--no-cpu-dispatch".into());
     }
     if let Some(g) = m.gravity {
         words.push(format!("--gravity={},{},{}", g[0], g[1], g[2]));

@@ -1,0 +1,392 @@
+//! Run-time CPU dispatch: on x86-64, a second copy of each numeric function compiled for
+//! AVX-512 (with FMA), chosen at run time when the CPU has it.
+//!
+//! A crate built for the default x86-64 target (no `-C target-cpu`) may use only SSE2: 16 vector
+//! registers of two `f64`s, no fused multiply-add. The unrolled dynamics keep dozens of values
+//! live at once, so on SSE2 they spill to the stack, and the joints' sines and cosines take
+//! two lanes at a time. So, for `std` code, every public `&self` function whose body does
+//! arithmetic (it calls `Self::mul_add` or `Self::joint_sin_cos`) becomes three:
+//!
+//! ```text
+//! #[inline] pub fn f(&self, args) -> R {             // the public API, unchanged
+//!     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
+//!     { if Self::has_avx512() { return unsafe { self.f_avx512(args) }; } }
+//!     self.f_body::<false>(args)
+//! }
+//! #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
+//! #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
+//! unsafe fn f_avx512(&self, args) -> R { self.f_body::<true>(args) }
+//! #[inline(always)] fn f_body<const WIDE: bool>(&self, args) -> R { the body }
+//! ```
+//!
+//! `f_body` is inlined into both, so it is compiled once for the crate's target and once for
+//! AVX-512: there `Self::mul_add_with::<true>` is `f64::mul_add`, one `vfmadd` instruction, the
+//! 32 registers hold what SSE2 spills, and the sines and cosines take 8 `f64` lanes (16 `f32`)
+//! at a time. `has_avx512` asks the standard library (`is_x86_feature_detected!`, cached atomic
+//! loads after the first call); it is `extern "C"` and never inlined, so that its callers know
+//! it cannot unwind. The `unsafe` call is sound because the callee needs exactly the features
+//! just detected. Where the crate is already compiled with AVX-512 (e.g. `-C target-cpu=native`
+//! on such a CPU), and on other architectures, the `cfg` removes the dispatch and the code is
+//! what it was. On an AVX-512 CPU the results can differ from the portable code's by the
+//! rounding of the fused operations. AVX2 alone was measured too (the same scheme with
+//! `avx2,fma`): on the Panda it gained nothing (−4 % to +15 %), since its 16 registers spill as
+//! SSE2's do; it is not generated.
+//!
+//! Left alone: functions with generic parameters (the batch functions), bodies split into
+//! `extern "C"` parts (the largest trees), whose nested functions cannot see `WIDE`, and
+//! bodies of fewer than [`MIN_TOKENS`] tokens.
+
+use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
+use quote::{format_ident, quote};
+
+/// The `cfg` under which the dispatch exists.
+fn dispatch_cfg() -> TokenStream {
+    quote!(#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))])
+}
+
+/// What the rewritten bodies use, so that only those helpers are added.
+#[derive(Default)]
+struct Used {
+    any: bool,
+    mul_add: bool,
+    sin_cos: bool,
+}
+
+/// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
+/// the two helpers when any was; unchanged when none is.
+pub fn apply(impl_block: TokenStream, scalar: crate::options::Scalar) -> TokenStream {
+    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
+    let Some((pos, body)) = tokens.iter().enumerate().find_map(|(k, t)| match t {
+        TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((k, g.clone())),
+        _ => None,
+    }) else {
+        return tokens.into_iter().collect();
+    };
+    let mut used = Used::default();
+    let items = dispatch_items(body.stream(), &mut used);
+    if !used.any {
+        return tokens.into_iter().collect();
+    }
+    let helpers = helpers(scalar, &used);
+    let mut group = Group::new(Delimiter::Brace, quote!(#items #helpers));
+    group.set_span(body.span());
+    tokens[pos] = TokenTree::Group(group);
+    tokens.into_iter().collect()
+}
+
+/// The private helpers the dispatched functions call.
+fn helpers(scalar: crate::options::Scalar, used: &Used) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    let cfg = dispatch_cfg();
+    let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
+        crate::options::Scalar::F64 => 8,
+        crate::options::Scalar::F32 => 16,
+    });
+    let mul_add = used.mul_add.then(|| {
+        quote! {
+            /// `a·b + c`: fused when `WIDE` (code compiled for AVX-512, which has FMA: one
+            /// instruction), otherwise [`Self::mul_add`].
+            #[inline(always)]
+            fn mul_add_with<const WIDE: bool>(a: #t, b: #t, c: #t) -> #t {
+                if WIDE {
+                    a.mul_add(b, c)
+                } else {
+                    Self::mul_add(a, b, c)
+                }
+            }
+        }
+    });
+    let sin_cos = used.sin_cos.then(|| {
+        quote! {
+            /// `k` rounded up to a whole number of AVX-512 registers: the padded length of the
+            /// sines and cosines in dispatched code (computed on all of them when `WIDE`, on
+            /// [`Self::sin_cos_lanes`] otherwise).
+            #[inline(always)]
+            const fn wide_lanes(k: usize) -> usize {
+                k.div_ceil(#lanes) * #lanes
+            }
+        }
+    });
+    quote! {
+        #mul_add
+        #sin_cos
+
+        /// Whether this CPU has the AVX-512 features the dispatched functions are compiled for
+        /// (the standard library's detection, cached). `extern "C"` and never inlined: its
+        /// callers know it cannot unwind.
+        #cfg
+        #[inline(never)]
+        extern "C" fn has_avx512() -> bool {
+            ::std::is_x86_feature_detected!("avx512f")
+                && ::std::is_x86_feature_detected!("avx512vl")
+                && ::std::is_x86_feature_detected!("avx512dq")
+                && ::std::is_x86_feature_detected!("avx512bw")
+                && ::std::is_x86_feature_detected!("fma")
+        }
+    }
+}
+
+/// The items of an impl body, each eligible function dispatched (noted in `used`).
+fn dispatch_items(stream: TokenStream, used: &mut Used) -> TokenStream {
+    let mut out = TokenStream::new();
+    let mut item: Vec<TokenTree> = Vec::new();
+    let mut seen_fn = false;
+    for tt in stream {
+        let end = match &tt {
+            TokenTree::Punct(p) if p.as_char() == ';' && !seen_fn => true,
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace && seen_fn => true,
+            TokenTree::Ident(i) if i == "fn" => {
+                seen_fn = true;
+                false
+            }
+            _ => false,
+        };
+        item.push(tt);
+        if end {
+            match dispatched(&item, used) {
+                Some(tokens) => {
+                    out.extend(tokens);
+                    used.any = true;
+                }
+                None => out.extend(item.drain(..)),
+            }
+            item.clear();
+            seen_fn = false;
+        }
+    }
+    out.extend(item);
+    out
+}
+
+/// The three functions for `item` (attributes, `pub fn name(&self, …) -> R { body }`), or
+/// `None` when it is not eligible.
+fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
+    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
+    let p = item.iter().position(|t| is_ident(t, "pub"))?;
+    if !is_ident(item.get(p + 1)?, "fn") {
+        return None; // `pub const`, `pub const fn`, `pub unsafe fn`, …
+    }
+    let TokenTree::Ident(name) = item.get(p + 2)? else {
+        return None;
+    };
+    let TokenTree::Group(args) = item.get(p + 3)? else {
+        return None; // generic parameters
+    };
+    if args.delimiter() != Delimiter::Parenthesis {
+        return None;
+    }
+    let TokenTree::Group(body) = item.last()? else {
+        return None;
+    };
+    let ret: TokenStream = item[p + 4..item.len() - 1].iter().cloned().collect();
+    let arg_names = receiver_and_names(args.stream())?;
+    let body = body.stream();
+    if !calls_arithmetic(&body) || contains_ident(&body, "extern") || size(&body) < MIN_TOKENS {
+        return None;
+    }
+    let attrs: TokenStream = item[..p].iter().cloned().collect();
+    let args = args.stream();
+    let fast = format_ident!("{}_avx512", name);
+    let body_fn = format_ident!("{}_body", name);
+    let fused = wide_body(body, used);
+    let cfg = dispatch_cfg();
+    let fast_doc = format!(
+        " [`Self::{name}`] compiled for AVX-512: call it only on a CPU that has the features \
+         [`Self::has_avx512`] checks."
+    );
+    let body_doc = format!(
+        " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds and sines and cosines as \
+         wide as an AVX-512 register."
+    );
+    Some(quote! {
+        #attrs
+        pub fn #name(#args) #ret {
+            #cfg
+            {
+                if Self::has_avx512() {
+                    return unsafe { self.#fast(#(#arg_names),*) };
+                }
+            }
+            self.#body_fn::<false>(#(#arg_names),*)
+        }
+
+        #[doc = #fast_doc]
+        #cfg
+        #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
+        unsafe fn #fast(#args) #ret {
+            self.#body_fn::<true>(#(#arg_names),*)
+        }
+
+        #[doc = #body_doc]
+        #[inline(always)]
+        fn #body_fn<const WIDE: bool>(#args) #ret {
+            #fused
+        }
+    })
+}
+
+/// The argument names after a `&self` receiver (`None` without one, or for a pattern
+/// argument).
+fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
+    // Split at the commas outside angle brackets (`SVector<f64, 7>`).
+    let mut parts: Vec<Vec<TokenTree>> = vec![Vec::new()];
+    let mut depth = 0i32;
+    for t in args {
+        match &t {
+            TokenTree::Punct(p) if p.as_char() == '<' => depth += 1,
+            TokenTree::Punct(p) if p.as_char() == '>' => depth -= 1,
+            TokenTree::Punct(p) if p.as_char() == ',' && depth == 0 => {
+                parts.push(Vec::new());
+                continue;
+            }
+            _ => {}
+        }
+        if let Some(last) = parts.last_mut() {
+            last.push(t);
+        }
+    }
+    let mut parts = parts.into_iter();
+    let receiver = parts.next()?;
+    let is_self = matches!(receiver.as_slice(), [TokenTree::Punct(a), TokenTree::Ident(s)] if a.as_char() == '&' && s == "self");
+    if !is_self {
+        return None;
+    }
+    parts
+        .filter(|p| !p.is_empty())
+        .map(|p| match (p.first(), p.get(1)) {
+            (Some(TokenTree::Ident(i)), Some(TokenTree::Punct(c))) if c.as_char() == ':' => {
+                Some(i.clone())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The smallest body (in tokens) worth a second copy: below it (a pendulum's functions, a
+/// few dozen operations) the check of the CPU would cost a noticeable part of the call.
+const MIN_TOKENS: usize = 400;
+
+/// The number of tokens of `stream`, groups' contents included.
+fn size(stream: &TokenStream) -> usize {
+    stream
+        .clone()
+        .into_iter()
+        .map(|t| match t {
+            TokenTree::Group(g) => 1 + size(&g.stream()),
+            _ => 1,
+        })
+        .sum()
+}
+
+fn contains_ident(stream: &TokenStream, name: &str) -> bool {
+    stream.clone().into_iter().any(|t| match t {
+        TokenTree::Ident(i) => i == name,
+        TokenTree::Group(g) => contains_ident(&g.stream(), name),
+        _ => false,
+    })
+}
+
+/// Whether a body calls the arithmetic helpers (so that it is worth a second copy).
+fn calls_arithmetic(body: &TokenStream) -> bool {
+    contains_ident(body, "mul_add") || contains_ident(body, "joint_sin_cos")
+}
+
+/// `body` with every `Self::mul_add(` turned into `Self::mul_add_with::<WIDE>(`, and every
+/// `Self::joint_sin_cos::<K, P>(x)` into `Self::sin_cos_n::<K, { Self::wide_lanes(K) }>(x, n)`
+/// with `n` the wide lanes when `WIDE`, [`sin_cos_lanes`](super::trig) otherwise.
+fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
+    let mut out: Vec<TokenTree> = Vec::new();
+    let mut tokens = body.into_iter().peekable();
+    while let Some(tt) = tokens.next() {
+        match tt {
+            TokenTree::Ident(i) if i == "mul_add" && after_self_path(&out) => {
+                used.mul_add = true;
+                let call = quote!(mul_add_with::<WIDE>);
+                out.extend(call);
+            }
+            TokenTree::Ident(i) if i == "joint_sin_cos" && after_self_path(&out) => {
+                // `::<K, P>(args)`: K a literal, P a literal or a `{ … }` block.
+                let rest: Vec<TokenTree> = tokens.by_ref().take(7).collect();
+                let k = match rest.as_slice() {
+                    [TokenTree::Punct(c1), TokenTree::Punct(c2), TokenTree::Punct(lt), k @ TokenTree::Literal(_), TokenTree::Punct(comma), _p, TokenTree::Punct(gt)]
+                        if c1.as_char() == ':'
+                            && c2.as_char() == ':'
+                            && lt.as_char() == '<'
+                            && comma.as_char() == ','
+                            && gt.as_char() == '>' =>
+                    {
+                        // One angle: nothing to widen (and its pattern has no `..`).
+                        Some(k.clone()).filter(|k| k.to_string() != "1")
+                    }
+                    _ => None,
+                };
+                let args = match (k.is_some(), tokens.peek()) {
+                    (true, Some(TokenTree::Group(g)))
+                        if g.delimiter() == Delimiter::Parenthesis =>
+                    {
+                        Some(g.stream())
+                    }
+                    _ => None,
+                };
+                match (k, args) {
+                    (Some(k), Some(args)) => {
+                        tokens.next();
+                        used.sin_cos = true;
+                        let call = quote! {
+                            sin_cos_n::<#k, { Self::wide_lanes(#k) }>(
+                                #args,
+                                if WIDE { Self::wide_lanes(#k) } else { Self::sin_cos_lanes(#k) },
+                            )
+                        };
+                        out.extend(call);
+                    }
+                    _ => {
+                        out.push(TokenTree::Ident(i));
+                        out.extend(rest);
+                    }
+                }
+            }
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), wide_body(g.stream(), used));
+                new.set_span(g.span());
+                out.push(TokenTree::Group(new));
+            }
+            other => out.push(other),
+        }
+    }
+    out.into_iter().collect()
+}
+
+/// Whether `out` ends in `Self ::`.
+fn after_self_path(out: &[TokenTree]) -> bool {
+    matches!(
+        out,
+        [.., TokenTree::Ident(s), TokenTree::Punct(a), TokenTree::Punct(b)]
+            if s == "Self" && a.as_char() == ':' && b.as_char() == ':'
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn std_code_has_an_avx512_copy_and_no_std_code_none() {
+        let std = crate::Builder::new("ur5").generate().expect("generates");
+        assert!(std.contains("fn inverse_dynamics_avx512("));
+        assert!(std.contains("fn has_avx512() -> bool"));
+        assert!(std.contains("Self::mul_add_with::<WIDE>"));
+        // Every `mul_add` of a dispatched body goes through `mul_add_with`.
+        let body = &std[std.find("fn inverse_dynamics_body").expect("a body")..];
+        let body = &body[..body.find("\n    }\n").expect("its end")];
+        assert!(!body.contains("Self::mul_add("));
+        assert!(body.contains("Self::sin_cos_n::<"));
+        for builder in [
+            crate::Builder::new("ur5").no_std(true),
+            crate::Builder::new("ur5").cpu_dispatch(false),
+        ] {
+            let code = builder.generate().expect("generates");
+            assert!(!code.contains("has_avx512"), "{}", builder.options().no_std);
+            assert!(!code.contains("target_feature(enable"));
+            assert!(!code.contains("unsafe"));
+        }
+    }
+}
