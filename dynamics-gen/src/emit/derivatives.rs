@@ -140,13 +140,46 @@ pub fn derivative_functions(
     } else {
         quote!()
     };
-    let layout = " Every matrix is `nv × nv` with entry `(i, j) = ∂f_i/∂x_j`, indices in the order of `JOINT_NAMES` (after the base's six for a floating base). Units follow the functions differentiated (per rad or per m of the coordinate `j`). Method: forward-mode differentiation of the expanded graph, one sweep per coordinate, every constant of the robot folded in; `∂q̈/∂(q, q̇) = −M⁻¹ ∂τ/∂(q, q̇)` at `q̈ = forward_dynamics(q, q̇, τ)` (implicit function theorem, no explicit inverse in it: the unrolled factorisation `M = Lᵀ D L` is applied column by column).";
+    let layout = " Every matrix is `nv × nv` with entry `(i, j) = ∂f_i/∂x_j`, indices in the order of `JOINT_NAMES` (after the base's six for a floating base). Units follow the functions differentiated (per rad or per m of the coordinate `j`).";
+    let m = x.method;
+    let form = |analytical: bool| {
+        if analytical {
+            "the analytical recursion of Carpentier & Mansard (RSS 2018) expanded in joint frames"
+        } else {
+            "forward-mode differentiation of the expanded dynamics, one sweep per coordinate"
+        }
+    };
+    let id_method = if m.d_tau_dq_analytical == m.d_tau_dqd_analytical {
+        format!(
+            " Method: both matrices by {}; every constant of the robot folded in.",
+            form(m.d_tau_dq_analytical)
+        )
+    } else {
+        format!(
+            " Method: `∂τ/∂q` by {}, `∂τ/∂q̇` by {} (each the form with fewer operations); every constant of the robot folded in.",
+            form(m.d_tau_dq_analytical),
+            form(m.d_tau_dqd_analytical)
+        )
+    };
+    let fd_method = format!(
+        "{id_method} Then `∂q̈/∂(q, q̇) = −M⁻¹ ∂τ/∂(q, q̇)` at `q̈ = forward_dynamics(q, q̇, τ)` (implicit function theorem), {}.",
+        if m.by_product {
+            "as the product with `M⁻¹`, which is returned as well"
+        } else {
+            "each column solved with the unrolled factorisation `M = Lᵀ D L`"
+        }
+    );
+    let dg_method = format!(
+        " Method: {}; every constant of the robot folded in.",
+        form(m.gravity_derivative_analytical)
+    );
     quote! {
         /// The derivatives of inverse dynamics `τ = ID(q, q̇, q̈)`: `(∂τ/∂q, ∂τ/∂q̇)`;
         /// `∂τ/∂q̈` is `mass_matrix(q)`. What trajectory optimisation and MPC linearise
         /// around each knot.
         #[doc = ""]
         #[doc = #layout]
+        #[doc = #id_method]
         #tangent_doc
         #[inline]
         #[must_use]
@@ -163,6 +196,7 @@ pub fn derivative_functions(
         /// `inverse_dynamics_derivatives`, sharing the recursion between them.
         #[doc = ""]
         #[doc = #layout]
+        #[doc = #id_method]
         #tangent_doc
         #[inline]
         #[must_use]
@@ -179,6 +213,7 @@ pub fn derivative_functions(
         /// `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ)`, the last being `M⁻¹` (symmetric, full).
         #[doc = ""]
         #[doc = #layout]
+        #[doc = #fd_method]
         #tangent_doc
         #[inline]
         #[must_use]
@@ -196,6 +231,7 @@ pub fn derivative_functions(
         /// needs the next state and its linearisation.
         #[doc = ""]
         #[doc = #layout]
+        #[doc = #fd_method]
         #tangent_doc
         #[inline]
         #[must_use]
@@ -223,6 +259,7 @@ pub fn derivative_functions(
         /// gravity compensation adds to a joint-space controller.
         #[doc = ""]
         #[doc = #layout]
+        #[doc = #dg_method]
         #tangent_doc
         #[inline]
         #[must_use]

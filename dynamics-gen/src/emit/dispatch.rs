@@ -25,7 +25,9 @@
 //! at a time. `has_avx512` asks the standard library (`is_x86_feature_detected!`, cached atomic
 //! loads after the first call); it is `extern "C"` and never inlined, so that its callers know
 //! it cannot unwind. The `unsafe` call is sound because the callee needs exactly the features
-//! just detected. Where the crate is already compiled with AVX-512 (e.g. `-C target-cpu=native`
+//! just detected. Both carry `#[allow(unsafe_code)]`, so that a crate that denies unsafe code
+//! still compiles the generated file (a crate that forbids it cannot lift that: it generates
+//! with `--no-cpu-dispatch`). Where the crate is already compiled with AVX-512 (e.g. `-C target-cpu=native`
 //! on such a CPU), and on other architectures, the `cfg` removes the dispatch and the code is
 //! what it was. On an AVX-512 CPU the results can differ from the portable code's by the
 //! rounding of the fused operations. AVX2 alone was measured too (the same scheme with
@@ -200,6 +202,7 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
     );
     Some(quote! {
         #attrs
+        #[allow(unsafe_code)]
         pub fn #name(#args) #ret {
             #cfg
             {
@@ -213,6 +216,7 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
         #[doc = #fast_doc]
         #cfg
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
+        #[allow(unsafe_code)]
         unsafe fn #fast(#args) #ret {
             self.#body_fn::<true>(#(#arg_names),*)
         }

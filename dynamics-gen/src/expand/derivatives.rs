@@ -72,6 +72,21 @@ pub struct Derivatives {
     pub inverse_dynamics: Vec<ExprId>,
     /// Forward dynamics `ν̇` (as in [`Dynamics::forward_dynamics`]).
     pub forward_dynamics: Vec<ExprId>,
+    /// How each matrix was obtained (the form with the fewer operations), for the docs.
+    pub method: DerivativeMethod,
+}
+
+/// Which form [`expand_derivatives`] kept for each matrix.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DerivativeMethod {
+    /// `∂τ/∂q` by the analytical recursion ([`rnea_derivatives`]); otherwise forward mode.
+    pub d_tau_dq_analytical: bool,
+    /// `∂τ/∂ν` by the analytical recursion; otherwise forward mode.
+    pub d_tau_dqd_analytical: bool,
+    /// `∂g/∂q` by the analytical recursion; otherwise forward mode.
+    pub gravity_derivative_analytical: bool,
+    /// `−M⁻¹ B` as the product with `M⁻¹`; otherwise by solves with the factor of `M`.
+    pub by_product: bool,
 }
 
 /// The seeds of [`ExprGraph::jvp`] for each of the nv tangent directions of the
@@ -236,6 +251,7 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
     // The analytical recursion where it applies, for each matrix the form of the pair with
     // the fewest operations (they share nodes), and for ∂g/∂q the fewer. Not on the
     // Lagrangian route: there every derivative is taken of the Lagrangian's own expressions.
+    let mut method = DerivativeMethod::default();
     let recursion = match d.method {
         super::Method::NewtonEuler => {
             analytical(&mut g, robot, &[PairFrame::Deeper, PairFrame::Ancestor])
@@ -251,14 +267,15 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
             (&d_tau_dq, &a.d_tau_dqd),
             (&a.d_tau_dq, &a.d_tau_dqd),
         ];
-        let (x, y) = forms
-            .iter()
-            .min_by_key(|(x, y)| cost(&g, x, y))
-            .map(|(x, y)| (x.to_vec(), y.to_vec()))
-            .unwrap_or_default();
-        (d_tau_dq, d_tau_dqd) = (x, y);
+        let best = (0..forms.len())
+            .min_by_key(|&k| cost(&g, forms[k].0, forms[k].1))
+            .unwrap_or(0);
+        (d_tau_dq, d_tau_dqd) = (forms[best].0.to_vec(), forms[best].1.to_vec());
+        method.d_tau_dq_analytical = best & 1 == 1;
+        method.d_tau_dqd_analytical = best & 2 == 2;
         if g.op_counts(&a.gravity_derivative).total() < g.op_counts(&gravity_derivative).total() {
             gravity_derivative = a.gravity_derivative;
+            method.gravity_derivative_analytical = true;
         }
         // τ for the value-with-derivatives forms: read off the recursion where that is cheaper.
         let with = |g: &ExprGraph, tau: &[ExprId]| {
@@ -302,7 +319,8 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
         g.op_counts(&[&x[0][..], &x[1][..], &mass_matrix_inverse[..]].concat())
             .total()
     };
-    let [d_qdd_dq, d_qdd_dqd] = if cost(&g, &by_product) < cost(&g, &by_solve) {
+    method.by_product = cost(&g, &by_product) < cost(&g, &by_solve);
+    let [d_qdd_dq, d_qdd_dqd] = if method.by_product {
         by_product
     } else {
         by_solve
@@ -333,5 +351,6 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
         inverse_dynamics: next(),
         forward_dynamics: next(),
         graph,
+        method,
     }
 }
