@@ -46,7 +46,7 @@ ET.ElementTree(arm).write(sys.argv[2])
 PY
 
 # 2. Generated code.
-F=inverse_dynamics,mass_matrix,gravity,forward_dynamics,inverse_dynamics_derivatives,forward_dynamics_with_derivatives,mass_matrix_inverse,gravity_derivative
+F=inverse_dynamics,coriolis,mass_matrix,gravity,forward_dynamics,inverse_dynamics_derivatives,forward_dynamics_with_derivatives,mass_matrix_inverse,gravity_derivative
 OUT=$HERE/unseen/src/generated
 (cd "$ROOT" && cargo build -q --release -p dynamics-gen)
 GEN=$ROOT/target/release/dynamics-gen
@@ -74,7 +74,7 @@ echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'"
 # 4. Side by side (xarm7_snapped against Pinocchio on the file as written).
 "$VENV/bin/python" - "$WORK/pinocchio.txt" "$WORK/ours.txt" <<'PY'
 import sys
-algo = {"inverse_dynamics": "rnea", "mass_matrix": "crba", "gravity": "gravity", "forward_dynamics": "aba",
+algo = {"inverse_dynamics": "rnea", "coriolis": "nle", "mass_matrix": "crba", "gravity": "gravity", "forward_dynamics": "aba",
         "inverse_dynamics_derivatives": "rnea_derivatives", "forward_dynamics_with_derivatives": "aba_derivatives",
         "mass_matrix_inverse": "minverse", "gravity_derivative": "gravity_derivatives"}
 pin = {}

@@ -62,6 +62,13 @@ macro_rules! bench {
             }),
         );
         line(
+            "coriolis",
+            time(|i| {
+                let s = &st[i];
+                black_box(r.coriolis(black_box(&s.0), &s.1));
+            }),
+        );
+        line(
             "mass_matrix",
             time(|i| {
                 black_box(r.mass_matrix(black_box(&st[i].0)));
