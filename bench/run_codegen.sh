@@ -2,7 +2,8 @@
 # Pinocchio's code-generated rnea, crba, aba and derivatives (CppADCodeGen) timed on this machine; see bench/README.md.
 #   bash bench/run_codegen.sh
 #   ROBOTS="ur5" CALLS=20000 REPS=3 bash bench/run_codegen.sh
-# Environment: ROBOTS (default "ur5 panda rand7": fixed-base URDFs in tests/data/robots or its trees/),
+# Environment: ROBOTS (default "ur5 panda rand7": fixed-base URDFs in tests/data/robots or its trees/, or
+# NAME=PATH.urdf for any other file),
 # CALLS (100000), REPS (5), CG_CC (C compiler for the generated code, default gcc),
 # CG_CFLAGS (its flags, default "-O3 -march=native"), CXX (for the benchmark program, default g++).
 # Output: ~/.cache/dynamics-gen-bench/pinocchio_codegen.txt ("robot nv algo median_ns min_ns"), the full log
@@ -55,10 +56,16 @@ fi
 # 3. Models (URDF -> binary via the Python package) and the cache of generated libraries, one folder per
 #    robot, cleared when the model, the program or the C compiler and flags change.
 ARGS=()
-for name in $ROBOTS; do
-  u=$ROOT/tests/data/robots/$name.urdf
-  [ -f "$u" ] || u=$ROOT/tests/data/robots/trees/$name.urdf
-  [ -f "$u" ] || { echo "no URDF for $name in tests/data/robots or tests/data/robots/trees" >&2; exit 1; }
+for entry in $ROBOTS; do
+  # NAME (a URDF in tests/data/robots or its trees/) or NAME=PATH.urdf (any URDF, e.g. bench/unseen.sh's).
+  name=${entry%%=*}
+  if [ "$name" != "$entry" ]; then
+    u=${entry#*=}
+  else
+    u=$ROOT/tests/data/robots/$name.urdf
+    [ -f "$u" ] || u=$ROOT/tests/data/robots/trees/$name.urdf
+  fi
+  [ -f "$u" ] || { echo "no URDF for $name (tests/data/robots, its trees/, or NAME=PATH)" >&2; exit 1; }
   "$VENV/bin/python" -c 'import sys, pinocchio as pin
 pin.buildModelFromUrdf(sys.argv[1]).saveToBinary(sys.argv[2])' "$u" "$CACHE/models/$name.bin"
   key=$( { cat "$CACHE/models/$name.bin"; echo "$KEY"; "$CG_CC" --version; echo "$CG_CC $CG_CFLAGS"; } | sha256sum | cut -c1-16)

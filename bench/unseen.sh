@@ -7,8 +7,10 @@
 #   - Baxter's left arm (Rethink; example-robot-data), shoulder to wrist, 7 joints, axis-aligned.
 # Pinocchio 4.1.0's C++ benchmark (bench/pinocchio_bench.cpp, -O3 -march=native, 1,024 random
 # states) on the files as written, then our generated code (bench/unseen/, compiled with
-# -C target-cpu=native; NATIVE=0 for the default target), then the ratios.
+# -C target-cpu=native; NATIVE=0 for the default target), then the ratios; CODEGEN=1 adds
+# Pinocchio's code-generated functions (bench/run_codegen.sh) as a second ratio.
 #   bash bench/unseen.sh
+#   NATIVE=0 CODEGEN=1 bash bench/unseen.sh
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -67,6 +69,12 @@ done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0"
 "$CACHE/pinocchio_bench" --calls 20000 --reps 5 xarm7="$CACHE/models/xarm7.bin" \
   baxter_left_arm="$CACHE/models/baxter_left_arm.bin" | tee "$WORK/pinocchio.txt"
+# CODEGEN=1: Pinocchio's code-generated functions too (bench/run_codegen.sh; a long first run).
+if [ "${CODEGEN:-0}" = 1 ]; then
+  ROBOTS="xarm7=$WORK/xarm7.urdf baxter_left_arm=$WORK/baxter_left_arm.urdf" CALLS=20000 \
+    bash "$HERE/run_codegen.sh" >/dev/null
+  tee -a "$WORK/pinocchio.txt" < "$CACHE/pinocchio_codegen.txt"
+fi
 if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
 echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'"
 (cd "$HERE/unseen" && cargo build -q --release && ./target/release/unseen-arms-bench) | tee "$WORK/ours.txt"
@@ -81,9 +89,16 @@ pin = {}
 for line in open(sys.argv[1]):
     robot, _nv, a, med, _mn = line.split()
     pin[(robot, a)] = float(med)
-print(f"\n{'robot':<16} {'ours':<34} {'ours_ns':>8} {'pinocchio':<19} {'pin_ns':>8} {'ratio':>6}")
+cg = any(a.startswith("cg_") for _, a in pin)
+print(f"\n{'robot':<16} {'ours':<34} {'ours_ns':>8} {'pinocchio':<19} {'pin_ns':>8} {'ratio':>6}"
+      + (f" {'codegen_ns':>10} {'ratio':>6}" if cg else ""))
 for line in open(sys.argv[2]):
     robot, f, ns = line.split()
-    p = pin.get((robot.replace("_snapped", ""), algo[f]))
-    print(f"{robot:<16} {f:<34} {float(ns):8.1f} {algo[f]:<19} {p:8.1f} {p / float(ns):5.1f}x")
+    r = robot.replace("_snapped", "")
+    p = pin.get((r, algo[f]))
+    row = f"{robot:<16} {f:<34} {float(ns):8.1f} {algo[f]:<19} {p:8.1f} {p / float(ns):5.1f}x"
+    c = pin.get((r, "cg_" + algo[f]))
+    if c is not None:
+        row += f" {c:10.1f} {c / float(ns):5.1f}x"
+    print(row)
 PY
