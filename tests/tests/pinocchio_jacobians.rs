@@ -118,6 +118,7 @@ fn generated_jacobians_reproduce_pinocchio() {
         seen.push(name);
     }
     seen.sort_unstable();
+    seen.dedup(); // a robot may be generated more than once (e.g. the portable copy of the Panda)
     assert_eq!(seen, ["double_pendulum", "panda", "rand7", "ur5"]);
 }
 
