@@ -15,7 +15,7 @@
 //! }
 //! #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
 //! #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
-//! unsafe fn f_avx512(&self, args) -> R { self.f_body::<true>(args) }
+//! unsafe extern "C" fn f_avx512(&self, args) -> R { self.f_body::<true>(args) }
 //! #[inline(always)] fn f_body<const WIDE: bool>(&self, args) -> R { the body }
 //! ```
 //!
@@ -24,7 +24,11 @@
 //! 32 registers hold what SSE2 spills, and the sines and cosines take 8 `f64` lanes (16 `f32`)
 //! at a time. `has_avx512` asks the standard library (`is_x86_feature_detected!`, cached atomic
 //! loads after the first call); it is `extern "C"` and never inlined, so that its callers know
-//! it cannot unwind. The `unsafe` call is sound because the callee needs exactly the features
+//! it cannot unwind. `f_avx512` is `extern "C"` for the same reason: it is compiled where the
+//! generated file is (often another crate than the caller's), and a call to a Rust function
+//! there counts as one that may unwind to `no_panic` and to the optimiser; an `extern "C"`
+//! function cannot unwind (a panic in it would abort; the body is the one `no_panic` checks
+//! in the portable copy, which has no panic path). The `unsafe` call is sound because the callee needs exactly the features
 //! just detected. Both carry `#[allow(unsafe_code)]`, so that a crate that denies unsafe code
 //! still compiles the generated file (a crate that forbids it cannot lift that: it generates
 //! with `--no-cpu-dispatch`). Where the crate is already compiled with AVX-512 (e.g. `-C target-cpu=native`
@@ -216,8 +220,8 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
         #[doc = #fast_doc]
         #cfg
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
-        #[allow(unsafe_code)]
-        unsafe fn #fast(#args) #ret {
+        #[allow(unsafe_code, improper_ctypes_definitions)]
+        unsafe extern "C" fn #fast(#args) #ret {
             self.#body_fn::<true>(#(#arg_names),*)
         }
 
