@@ -204,16 +204,19 @@ fn renumber(body: &mut [Statement], bind: &mut [Binding], value: TokenStream) ->
 
 /// `tokens` with every identifier that `names` maps replaced.
 fn rename(tokens: TokenStream, names: &std::collections::HashMap<String, Ident>) -> TokenStream {
+    map_idents(tokens, &|i| names.get(&i.to_string()).cloned())
+}
+
+/// `tokens` with every identifier for which `f` gives a replacement replaced, inside groups
+/// too (their spans kept).
+fn map_idents(tokens: TokenStream, f: &impl Fn(&Ident) -> Option<Ident>) -> TokenStream {
     use proc_macro2::{Group, TokenTree};
     tokens
         .into_iter()
         .map(|tt| match tt {
-            TokenTree::Ident(i) => match names.get(&i.to_string()) {
-                Some(new) => TokenTree::Ident(new.clone()),
-                None => TokenTree::Ident(i),
-            },
+            TokenTree::Ident(i) => TokenTree::Ident(f(&i).unwrap_or(i)),
             TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), rename(g.stream(), names));
+                let mut new = Group::new(g.delimiter(), map_idents(g.stream(), f));
                 new.set_span(g.span());
                 TokenTree::Group(new)
             }
@@ -335,19 +338,7 @@ fn blocks(body: Vec<Statement>, start: usize, last_use: &[usize]) -> TokenStream
 
 /// `tokens` with every `Self` replaced by `self_ty`.
 fn replace_self(tokens: TokenStream, self_ty: &Ident) -> TokenStream {
-    use proc_macro2::{Group, TokenTree};
-    tokens
-        .into_iter()
-        .map(|tt| match tt {
-            TokenTree::Ident(i) if i == "Self" => TokenTree::Ident(self_ty.clone()),
-            TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), replace_self(g.stream(), self_ty));
-                new.set_span(g.span());
-                TokenTree::Group(new)
-            }
-            other => other,
-        })
-        .collect()
+    map_idents(tokens, &|i| (i == "Self").then(|| self_ty.clone()))
 }
 
 #[derive(Clone)]
