@@ -302,9 +302,9 @@ fn cases() -> Vec<Case> {
         toml("Gear ratio zero", "limits = [-3, 3]", "limits = [-3, 3]\ngear_ratio = 0"),
         toml("Negative damping", "limits = [-3, 3]", "limits = [-3, 3]\ndamping = -1"),
         toml(
-            "Velocity limit without limits",
+            "Negative velocity limit",
             "limits = [-3, 3]",
-            "velocity_limit = 3.0",
+            "limits = [-3, 3]\nvelocity_limit = -3.0",
         ),
         toml("Gravity of the wrong length", "name = \"two\"", "name = \"two\"\ngravity = [0, -9.81]"),
         toml(

@@ -30,6 +30,9 @@ impl JointKind {
 }
 
 /// Position limits of a joint (rad or m), and optional velocity and effort limits.
+///
+/// A joint without position limits that has a velocity or effort limit (URDF's `continuous`
+/// joint with `<limit effort=.. velocity=..>`) has `lower = −∞` and `upper = +∞`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointLimits {
     /// Lower position limit.
@@ -51,7 +54,8 @@ pub struct Joint {
     pub kind: JointKind,
     /// `S_i`: the screw axis in the space frame {0} at the home configuration.
     pub screw: Vector6<f64>,
-    /// Position limits; `None` for an unlimited (continuous) joint.
+    /// Limits; `None` when the robot file gives none. A continuous joint's velocity and
+    /// effort limits are kept with `lower = −∞`, `upper = +∞`.
     pub limits: Option<JointLimits>,
     /// `b_i ≥ 0`, the viscous friction (damping) coefficient (N·m·s/rad or N·s/m): a joint
     /// force `b_i q̇_i` opposing the motion. It enters the dynamics only through the friction

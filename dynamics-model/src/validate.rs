@@ -118,7 +118,8 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             ));
         }
         if let Some(l) = &j.limits {
-            if !(l.lower.is_finite() && l.upper.is_finite()) || l.lower > l.upper {
+            let unlimited = l.lower == f64::NEG_INFINITY && l.upper == f64::INFINITY;
+            if !unlimited && (!(l.lower.is_finite() && l.upper.is_finite()) || l.lower > l.upper) {
                 errors.push(Invalid::new(
                     Subject::Joint {
                         index: Some(i),

@@ -553,15 +553,16 @@ fn a_bad_body_is_named() {
 }
 
 #[test]
-fn velocity_limit_needs_limits() {
+fn velocity_limit_must_be_positive() {
+    // Without position limits too: a velocity or effort limit is kept with −∞ and +∞.
     invalid(
         &edit(
             "point = [0, 0, 0.5]",
-            "point = [0, 0, 0.5]\nvelocity_limit = 2.0",
+            "point = [0, 0, 0.5]\nvelocity_limit = -2.0",
         ),
         "joint `j2`",
         "velocity_limit",
-        "without position `limits`",
+        "must be a positive number",
     );
 }
 

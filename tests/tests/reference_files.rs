@@ -204,7 +204,16 @@ fn ur5_with_continuous_joints_has_the_same_dynamics() {
         &opts,
     )
     .expect("continuous ur5");
-    assert!(b.joints.iter().all(|j| j.limits.is_none()));
+    // No position limits; the velocity and effort limits the file gives are kept.
+    for (ja, jb) in a.joints.iter().zip(&b.joints) {
+        let (la, lb) = (
+            ja.limits.expect("ur5 limits"),
+            jb.limits.expect("velocity, effort"),
+        );
+        assert_eq!((lb.lower, lb.upper), (f64::NEG_INFINITY, f64::INFINITY));
+        assert_eq!((lb.velocity, lb.effort), (la.velocity, la.effort));
+        assert!(lb.velocity.is_some() && lb.effort.is_some());
+    }
     let data = json("ur5.json");
     let g = Vector3::new(0.0, 0.0, -9.81);
     for s in data["samples"].as_array().expect("samples") {

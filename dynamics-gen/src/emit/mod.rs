@@ -1628,7 +1628,8 @@ fn allow_attrs() -> TokenStream {
 fn limit_consts(robot: &Robot, scalar: Scalar, n: usize) -> TokenStream {
     let ty = scalar.ident();
     let n = proc_macro2::Literal::usize_unsuffixed(n);
-    let value = |v: Option<f64>, sign: f64| match v {
+    // `None` and ±∞ (a continuous joint's position limits) are written as the constants.
+    let value = |v: Option<f64>, sign: f64| match v.filter(|v| v.is_finite()) {
         Some(v) => literal::float_tokens(v, scalar),
         None if sign < 0.0 => quote!(#ty::NEG_INFINITY),
         None => quote!(#ty::INFINITY),

@@ -296,22 +296,13 @@ fn joint(subject: &Subject, j: &JointSpec, errors: &mut Vec<Invalid>) -> Option<
                 None
             }
         },
-        None => {
-            for (key, given) in [
-                ("velocity_limit", j.velocity_limit.is_some()),
-                ("effort_limit", j.effort_limit.is_some()),
-            ] {
-                if given {
-                    errors.push(Invalid::new(
-                        subject.clone(),
-                        key,
-                        format!("`{key}` is given for a joint without position `limits`"),
-                        "add `limits = [lower, upper]` (the model keeps velocity and effort limits with the position limits), or remove the key",
-                    ));
-                }
-            }
-            None
-        }
+        // No position limits: a velocity or effort limit is kept with −∞ and +∞.
+        None => (j.velocity_limit.is_some() || j.effort_limit.is_some()).then_some(JointLimits {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            velocity: j.velocity_limit,
+            effort: j.effort_limit,
+        }),
     };
     for (key, value) in [
         ("velocity_limit", j.velocity_limit),

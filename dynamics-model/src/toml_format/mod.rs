@@ -31,8 +31,8 @@
 //! # point = [0, 0, 0]              # a point on it in {0}: S_i = (ω̂, −ω̂ × q).
 //! #                                # A prismatic joint takes `axis` only: S_i = (0, ω̂).
 //! limits = [-3.14, 3.14]           # optional [lower, upper] (rad or m); absent: unlimited
-//! velocity_limit = 3.0             # optional, rad/s or m/s (needs `limits`)
-//! effort_limit = 150.0             # optional, N·m or N (needs `limits`)
+//! velocity_limit = 3.0             # optional, rad/s or m/s (with or without `limits`)
+//! effort_limit = 150.0             # optional, N·m or N (with or without `limits`)
 //! damping = 0.0                    # optional, ≥ 0, viscous friction b, N·m·s/rad; default 0
 //! friction = 0.0                   # optional, ≥ 0, Coulomb friction μ, N·m; default 0
 //! #                                # (both only in τ_friction = b q̇ + μ sgn(q̇), below)
@@ -310,5 +310,21 @@ mod tests {
         // "bé" is 3 bytes; the space after it is the 3rd character of line 2.
         assert_eq!(line_column(text, 9), (2, 3));
         assert_eq!(line_column(text, 1000), (3, 1));
+    }
+
+    #[test]
+    fn velocity_and_effort_limits_need_no_position_limits() {
+        let text = include_str!("../../../robots/pendulum.toml").replacen(
+            "screw = [0, 0, 1, 0, 0, 0]",
+            "screw = [0, 0, 1, 0, 0, 0]\neffort_limit = 12.5\nvelocity_limit = 3.0",
+            1,
+        );
+        let opts = crate::load::LoadOptions::default();
+        let robot = crate::load::from_str(&text, crate::Format::Toml, "pendulum.toml", &opts)
+            .expect("a continuous joint with velocity and effort limits");
+        let l = robot.joints[0].limits.expect("the limits are kept");
+        assert_eq!((l.lower, l.upper), (f64::NEG_INFINITY, f64::INFINITY));
+        assert_eq!((l.velocity, l.effort), (Some(3.0), Some(12.5)));
+        assert_eq!(robot.joints[1].limits, None);
     }
 }

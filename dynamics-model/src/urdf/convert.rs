@@ -7,7 +7,8 @@
 //!   becomes fixed with `T e^{[A]θ}`, `A = (a, 0)` for a revolute joint about the unit axis
 //!   `a` (in the joint frame), `A = (0, a)` for a prismatic one.
 //! - `<axis>` defaults to `(1, 0, 0)` and is normalised; a zero axis is an error.
-//! - Limits with `lower = upper = 0` (and a continuous joint's) mean unlimited.
+//! - Limits with `lower = upper = 0` (and a continuous joint's) mean no position limits; a
+//!   velocity or effort limit is kept, with `lower = −∞`, `upper = +∞`.
 //! - A link's `<inertial>` gives the mass m, the tensor `I = [[ixx, ixy, ixz], [ixy, iyy,
 //!   iyz], [ixz, iyz, izz]]` about the centre of mass in the frame of `<inertial><origin>`;
 //!   no `<inertial>` means massless.
@@ -186,19 +187,17 @@ pub fn joint(j: &urdf_rs::Joint, lock: Option<f64>) -> Result<JointModel, Vec<In
             kind: Some(kind),
             transform,
             axis,
-            limits: if j.joint_type == T::Continuous {
-                None
-            } else {
-                limits
-            },
+            limits,
             damping,
             friction,
         }),
     }
 }
 
-/// The `<limit>` of a movable joint: `None` when unlimited (`lower = upper = 0`, or both
-/// infinite as URDF 1.2 writes omitted limits).
+/// The `<limit>` of a movable joint. Its position limits are none for a continuous joint
+/// (URDF ignores its `lower` and `upper`), and where `lower = upper = 0` or both are infinite
+/// (as URDF 1.2 writes omitted limits); then a velocity or effort limit is kept with
+/// `lower = −∞`, `upper = +∞`, and without either the result is `None`.
 fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> {
     let l = &j.limit;
     if l.lower.is_nan() || l.upper.is_nan() || l.velocity.is_nan() || l.effort.is_nan() {
@@ -224,8 +223,18 @@ fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> 
             ));
         }
     }
-    if (l.lower == 0.0 && l.upper == 0.0) || !(l.lower.is_finite() && l.upper.is_finite()) {
-        return None;
+    let positive = |v: f64| (v.is_finite() && v > 0.0).then_some(v);
+    let (velocity, effort) = (positive(l.velocity), positive(l.effort));
+    if j.joint_type == urdf_rs::JointType::Continuous
+        || (l.lower == 0.0 && l.upper == 0.0)
+        || !(l.lower.is_finite() && l.upper.is_finite())
+    {
+        return (velocity.is_some() || effort.is_some()).then_some(JointLimits {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            velocity,
+            effort,
+        });
     }
     if l.lower > l.upper {
         errors.push(Invalid::new(
@@ -236,12 +245,11 @@ fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> 
         ));
         return None;
     }
-    let positive = |v: f64| (v.is_finite() && v > 0.0).then_some(v);
     Some(JointLimits {
         lower: l.lower,
         upper: l.upper,
-        velocity: positive(l.velocity),
-        effort: positive(l.effort),
+        velocity,
+        effort,
     })
 }
 

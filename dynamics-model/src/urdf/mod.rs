@@ -25,6 +25,7 @@
 //!   that link's body, [`crate::EndEffector::parent`], `None` for the base), by default the
 //!   child link of the last movable joint in the order above.
 //! - Continuous joints are unlimited revolute joints; limits with lower = upper = 0 are none.
+//!   Their `<limit velocity effort>` is kept, with position limits −∞ and +∞.
 //!   `<dynamics damping friction>` is kept on the [`crate::Joint`] (viscous b and Coulomb μ, used
 //!   only by the friction functions, see [`crate::actuation`]). Gravity is `(0, 0, −9.81)`.
 //!

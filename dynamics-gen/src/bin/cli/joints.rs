@@ -47,12 +47,15 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             JointKind::Revolute => "rad",
             JointKind::Prismatic => "m",
         };
-        let limits = match &j.limits {
+        let position = j
+            .limits
+            .filter(|l| l.lower.is_finite() && l.upper.is_finite());
+        let limits = match &position {
             Some(l) => format!("limits [{}, {}] {unit}", l.lower, l.upper),
             None => "unlimited".to_string(),
         };
         // An unlimited revolute joint is URDF's `continuous` (q is the angle).
-        let kind = match (j.kind, &j.limits) {
+        let kind = match (j.kind, &position) {
             (JointKind::Revolute, None) => "continuous",
             (kind, _) => kind.as_str(),
         };
