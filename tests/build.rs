@@ -540,6 +540,8 @@ fn main() {
              impl {name} {{\n{helper}\n\
              /// Calls the helper, unpadded.\n\
              pub fn sin_cos<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::joint_sin_cos::<K, K>(x) }}\n\
+             /// Calls the helper with its multiply-adds fused, as the AVX-512 copy of a dispatched function does.\n\
+             pub fn sin_cos_fused<const K: usize>(x: [{t}; K]) -> ([{t}; K], [{t}; K]) {{ Self::sin_cos_n::<K, K, true>(x, K) }}\n\
              /// Calls the helper, padded to `P` as the generated functions call it.\n\
              pub fn sin_cos_padded<const K: usize, const P: usize>(x: [{t}; K]) -> ([{t}; P], [{t}; P]) {{ Self::joint_sin_cos::<K, P>(x) }}\n\
              /// The padded length of `k` angles for the compilation target.\n\

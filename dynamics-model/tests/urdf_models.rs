@@ -50,7 +50,7 @@ fn mr_ur5_urdf_equals_the_book_lists() {
 
 #[test]
 #[allow(clippy::approx_constant)] // the decimals the UR5 file writes for 2π and π
-fn continuous_joints_give_the_same_model_without_limits() {
+fn continuous_joints_give_the_same_model_without_position_limits() {
     let text = robot_text("ur5.urdf");
     let revolute = load_text(&text, "ur5.urdf", &LoadOptions::default()).expect("revolute");
     let continuous_text = text.replace(r#"type="revolute""#, r#"type="continuous""#);
@@ -64,10 +64,13 @@ fn continuous_joints_give_the_same_model_without_limits() {
             (c.kind, c.screw, c.damping, c.friction),
             (r.kind, r.screw, r.damping, r.friction)
         );
-        assert!(c.limits.is_none());
         // The UR5's revolute joints have limits (±2π, elbow ±π) and damping 0.0 friction 0.0.
         let l = r.limits.expect("revolute limits");
         assert!(l.lower < 0.0 && l.upper > 0.0 && l.lower == -l.upper);
+        // A continuous joint has no position limits but keeps the velocity and effort limits.
+        let lc = c.limits.expect("velocity and effort limits");
+        assert_eq!((lc.lower, lc.upper), (f64::NEG_INFINITY, f64::INFINITY));
+        assert_eq!((lc.velocity, lc.effort), (l.velocity, l.effort));
     }
     assert_eq!(revolute.joints[0].limits.unwrap().upper, 6.28318530718);
     assert_eq!(revolute.joints[2].limits.unwrap().upper, 3.14159265359);

@@ -2,7 +2,8 @@
 //! platform's `sin` and `cos`: at most 2 ulp for |x| ≤ 10⁶ (f64) and |x| ≤ 10⁴ (f32), on
 //! random arguments over the whole range, on small ones, and on the doubles closest to
 //! multiples of π/2 (where the reduced argument cancels); beyond the range, and for NaN and
-//! infinities, the platform's values.
+//! infinities, the platform's values. The polynomials are checked both as the portable code
+//! evaluates them and fused, as the AVX-512 copy of a dispatched function does.
 
 use dynamics_tests::trig_kernels::{F32NoStd, F32Std, F64NoStd, F64Std};
 
@@ -135,6 +136,7 @@ fn f64_within_two_ulp() {
     let xs = f64_arguments();
     for (name, f) in [
         ("std", F64Std::sin_cos::<8> as fn(_) -> _),
+        ("std, fused", F64Std::sin_cos_fused::<8>),
         ("no_std", F64NoStd::sin_cos::<8>),
     ] {
         let (es, xs_, ec, xc) = worst_f64(&xs, f);
@@ -166,6 +168,7 @@ fn f32_within_two_ulp() {
     }
     for (name, f) in [
         ("std", F32Std::sin_cos::<8> as fn(_) -> _),
+        ("std, fused", F32Std::sin_cos_fused::<8>),
         ("no_std", F32NoStd::sin_cos::<8>),
     ] {
         let (es, xs_, ec, xc) = worst_f32(&xs, f);

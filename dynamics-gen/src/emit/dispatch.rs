@@ -300,8 +300,9 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 }
 
 /// `body` with every `Self::mul_add(` turned into `Self::mul_add_with::<WIDE>(`, and every
-/// `Self::joint_sin_cos::<K, P>(x)` into `Self::sin_cos_n::<K, { Self::wide_lanes(K) }>(x, n)`
-/// with `n` the wide lanes when `WIDE`, [`sin_cos_lanes`](super::trig) otherwise.
+/// `Self::joint_sin_cos::<K, P>(x)` into
+/// `Self::sin_cos_n::<K, { Self::wide_lanes(K) }, WIDE>(x, n)` with `n` the wide lanes when
+/// `WIDE`, [`sin_cos_lanes`](super::trig) otherwise (and the polynomials fused when `WIDE`).
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let mut out: Vec<TokenTree> = Vec::new();
     let mut tokens = body.into_iter().peekable();
@@ -341,7 +342,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                         tokens.next();
                         used.sin_cos = true;
                         let call = quote! {
-                            sin_cos_n::<#k, { Self::wide_lanes(#k) }>(
+                            sin_cos_n::<#k, { Self::wide_lanes(#k) }, WIDE>(
                                 #args,
                                 if WIDE { Self::wide_lanes(#k) } else { Self::sin_cos_lanes(#k) },
                             )

@@ -14,11 +14,16 @@
 //!    one, exact for |k| < 2²¹; f32: four 11-bit pieces and a 24-bit one, exact for
 //!    |k| < 2¹³). The first difference is exact (Sterbenz), the others are error-free
 //!    transformations (Knuth's two-sum), so r = r_h + r_l carries about 100 (f64) or 60
-//!    (f32) correct bits even where x is close to a multiple of π/2 and r cancels.
+//!    (f32) correct bits even where x is close to a multiple of π/2 and r cancels. r_h is
+//!    the leading part as the subtractions leave it (not renormalised against r_l), so that
+//!    the polynomials start while r_l is still being summed.
 //! 2. **Polynomials** on |r_h| ≤ π/4 (z = r_h²): for f64, minimax polynomials through r¹³
 //!    (sin) and r¹⁴ (cos) whose relative errors there are below 0.04 ulp (`SIN_F64`); for
 //!    f32, the Taylor series through r⁹ and r¹⁰ (below 0.05 ulp); cos as
 //!    w + ((1 − w) − z/2 + z² Q(z)) with w = 1 − z/2, which keeps the rounding error of w.
+//!    Evaluated by Estrin's scheme (pairs, then powers of z²), with fused multiply-adds where
+//!    the code has FMA: the sines and cosines head every function's longest dependency chain,
+//!    and Estrin halves their depth.
 //! 3. **Correction and quadrant**: sin r ≈ S + r_l C and cos r ≈ C − r_l S; then, by k mod 4,
 //!    (sin x, cos x) = (S, C), (C, −S), (−S, −C) or (−C, S), by selects and sign-bit flips.
 //!
@@ -105,16 +110,44 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 .collect(),
         ),
     };
-    // c₀ + z·(c₁ + z·(…)), from the highest coefficient (a fold from 0.0 costs a multiply
-    // and an add, 0·z not being foldable in IEEE arithmetic).
-    let horner = |c: &[f64]| {
-        c.iter()
+    // Estrin's scheme: the pairs c₂ᵢ + z·c₂ᵢ₊₁ side by side, then joined by powers of z²
+    // from the top, (c₀ + z c₁) + z²·((c₂ + z c₃) + z²·(c₄ + z c₅)): three dependent
+    // multiply-adds after z² for six coefficients, where Horner's scheme chains six. The
+    // sines and cosines head every function's longest chain of dependent operations.
+    let estrin = |c: &[f64]| {
+        let pairs: Vec<TokenStream> = c
+            .chunks(2)
+            .map(|p| match *p {
+                [a, b] => {
+                    let (a, b) = (lit(a), lit(b));
+                    quote!(fma(z, #b, #a))
+                }
+                [a] => lit(a),
+                _ => unreachable!("chunks of two"),
+            })
+            .collect();
+        pairs
+            .into_iter()
             .rev()
-            .map(|&c| lit(c))
-            .reduce(|p, c| quote!((#c + z * #p)))
+            .reduce(|acc, p| quote!(fma(z2, #acc, #p)))
             .expect("polynomials have coefficients")
     };
-    let (sin_horner, cos_horner) = (horner(&sin_c), horner(&cos_c));
+    let (sin_poly, cos_poly) = (estrin(&sin_c), estrin(&cos_c));
+    // `a·b + c`: one rounding where the code is compiled with FMA (or in the AVX-512 copy of a
+    // dispatched function, `F`), two otherwise; `core` has no `mul_add`.
+    let fma = if no_std {
+        quote!(let fma = |a: #t, b: #t, c: #t| a * b + c;)
+    } else {
+        quote! {
+            let fma = |a: #t, b: #t, c: #t| {
+                if F || cfg!(target_feature = "fma") {
+                    a.mul_add(b, c)
+                } else {
+                    a * b + c
+                }
+            };
+        }
+    };
     let sign_shift = proc_macro2::Literal::u32_unsuffixed(sign_shift);
     let frac_2_pi = lit(std::f64::consts::FRAC_2_PI);
     let round = lit(round);
@@ -172,13 +205,19 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         /// number of the target's vector registers), and `P` results returned.
         #[inline(always)]
         fn joint_sin_cos<const K: usize, const P: usize>(x: [#t; K]) -> ([#t; P], [#t; P]) {
-            Self::sin_cos_n::<K, P>(x, P)
+            Self::sin_cos_n::<K, P, false>(x, P)
         }
 
         /// [`Self::joint_sin_cos`] on the first `n` of the `P` padded elements only (the
-        /// others stay 0): `n` a constant once inlined, the loop's trip count.
+        /// others stay 0): `n` a constant once inlined, the loop's trip count. `F`: the
+        /// polynomials' multiply-adds are fused (`mul_add`; with `std` only), as they also are
+        /// where the code is compiled with FMA.
         #[inline(always)]
-        fn sin_cos_n<const K: usize, const P: usize>(x: [#t; K], n: usize) -> ([#t; P], [#t; P]) {
+        fn sin_cos_n<const K: usize, const P: usize, const F: bool>(
+            x: [#t; K],
+            n: usize,
+        ) -> ([#t; P], [#t; P]) {
+            #fma
             let x = {
                 let mut padded = [0.0; P];
                 for (p, x) in padded.iter_mut().zip(x) {
@@ -189,21 +228,21 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
             let mut sin = [0.0; P];
             let mut cos = [0.0; P];
             for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
-                let y = x * #frac_2_pi + #round;
+                let y = fma(x, #frac_2_pi, #round);
                 let k = y - #round;
                 let n = y.to_bits();
-                let h = x - k * #p1;
+                let h = fma(-k, #p1, x);
                 #(#middle)*
                 let l = (#(#errors)+*) - k * #last;
-                let r = h + l;
-                let l = l - (r - h);
-                // sin r = r + r·z·P(z), cos r = 1 − z/2 + z²·Q(z), z = r², P and Q by Horner.
-                let z = r * r;
-                let s = r + r * z * #sin_horner;
+                // x − k·π/2 = h + l. sin h = h + h·z·P(z), cos h = 1 − z/2 + z²·Q(z), z = h²,
+                // P and Q by Estrin, start as soon as h is known, beside the sum of l.
+                let z = h * h;
+                let z2 = z * z;
+                let s = fma(h * z, #sin_poly, h);
                 let hz = 0.5 * z;
                 let w = 1.0 - hz;
-                let c = w + (((1.0 - w) - hz) + z * z * #cos_horner);
-                let (s, c) = (s + l * c, c - l * s);
+                let c = w + fma(z2, #cos_poly, (1.0 - w) - hz);
+                let (s, c) = (fma(l, c, s), fma(-l, s, c));
                 let (s, c) = if n & 1 == 0 { (s, c) } else { (c, s) };
                 *sin = #t::from_bits(s.to_bits() ^ ((n & 2) << #sign_shift));
                 *cos = #t::from_bits(c.to_bits() ^ ((n.wrapping_add(1) & 2) << #sign_shift));
