@@ -45,6 +45,25 @@ pub struct JointLimits {
     pub effort: Option<f64>,
 }
 
+impl JointLimits {
+    /// Velocity and effort limits of a joint without position limits (`lower = −∞`,
+    /// `upper = +∞`); `None` when neither is given.
+    pub fn without_position(velocity: Option<f64>, effort: Option<f64>) -> Option<Self> {
+        (velocity.is_some() || effort.is_some()).then_some(Self {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            velocity,
+            effort,
+        })
+    }
+
+    /// The position limits `(lower, upper)`, or `None` for a joint without them (±∞).
+    pub fn position(&self) -> Option<(f64, f64)> {
+        (self.lower != f64::NEG_INFINITY || self.upper != f64::INFINITY)
+            .then_some((self.lower, self.upper))
+    }
+}
+
 /// A movable joint i (1-based in the book, 0-based in the vectors here).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {

@@ -118,8 +118,8 @@ pub fn validate_with(robot: &Robot, unit_axes: bool) -> Vec<Invalid> {
             ));
         }
         if let Some(l) = &j.limits {
-            let unlimited = l.lower == f64::NEG_INFINITY && l.upper == f64::INFINITY;
-            if !unlimited && (!(l.lower.is_finite() && l.upper.is_finite()) || l.lower > l.upper) {
+            let interval = |(lo, up): (f64, f64)| lo.is_finite() && up.is_finite() && lo <= up;
+            if !l.position().is_none_or(interval) {
                 errors.push(Invalid::new(
                     Subject::Joint {
                         index: Some(i),

@@ -1628,8 +1628,7 @@ fn allow_attrs() -> TokenStream {
 fn limit_consts(robot: &Robot, scalar: Scalar, n: usize) -> TokenStream {
     let ty = scalar.ident();
     let n = proc_macro2::Literal::usize_unsuffixed(n);
-    // `None` and ±∞ (a continuous joint's position limits) are written as the constants.
-    let value = |v: Option<f64>, sign: f64| match v.filter(|v| v.is_finite()) {
+    let value = |v: Option<f64>, sign: f64| match v {
         Some(v) => literal::float_tokens(v, scalar),
         None if sign < 0.0 => quote!(#ty::NEG_INFINITY),
         None => quote!(#ty::INFINITY),
@@ -1637,8 +1636,9 @@ fn limit_consts(robot: &Robot, scalar: Scalar, n: usize) -> TokenStream {
     let independent = || robot.joints.iter().filter(|j| j.is_independent());
     let position: Vec<TokenStream> = independent()
         .map(|j| {
-            let lo = value(j.limits.map(|l| l.lower), -1.0);
-            let hi = value(j.limits.map(|l| l.upper), 1.0);
+            let position = j.limits.and_then(|l| l.position());
+            let lo = value(position.map(|p| p.0), -1.0);
+            let hi = value(position.map(|p| p.1), 1.0);
             quote!([#lo, #hi])
         })
         .collect();

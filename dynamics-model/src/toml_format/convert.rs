@@ -297,12 +297,7 @@ fn joint(subject: &Subject, j: &JointSpec, errors: &mut Vec<Invalid>) -> Option<
             }
         },
         // No position limits: a velocity or effort limit is kept with −∞ and +∞.
-        None => (j.velocity_limit.is_some() || j.effort_limit.is_some()).then_some(JointLimits {
-            lower: f64::NEG_INFINITY,
-            upper: f64::INFINITY,
-            velocity: j.velocity_limit,
-            effort: j.effort_limit,
-        }),
+        None => JointLimits::without_position(j.velocity_limit, j.effort_limit),
     };
     for (key, value) in [
         ("velocity_limit", j.velocity_limit),

@@ -229,12 +229,7 @@ fn limits(j: &urdf_rs::Joint, errors: &mut Vec<Invalid>) -> Option<JointLimits> 
         || (l.lower == 0.0 && l.upper == 0.0)
         || !(l.lower.is_finite() && l.upper.is_finite())
     {
-        return (velocity.is_some() || effort.is_some()).then_some(JointLimits {
-            lower: f64::NEG_INFINITY,
-            upper: f64::INFINITY,
-            velocity,
-            effort,
-        });
+        return JointLimits::without_position(velocity, effort);
     }
     if l.lower > l.upper {
         errors.push(Invalid::new(

@@ -47,11 +47,9 @@ pub fn run(args: &ModelArgs) -> Result<(), String> {
             JointKind::Revolute => "rad",
             JointKind::Prismatic => "m",
         };
-        let position = j
-            .limits
-            .filter(|l| l.lower.is_finite() && l.upper.is_finite());
+        let position = j.limits.and_then(|l| l.position());
         let limits = match &position {
-            Some(l) => format!("limits [{}, {}] {unit}", l.lower, l.upper),
+            Some((lower, upper)) => format!("limits [{lower}, {upper}] {unit}"),
             None => "unlimited".to_string(),
         };
         // An unlimited revolute joint is URDF's `continuous` (q is the angle).
