@@ -6,9 +6,14 @@
 //! side, one per state, each operation applied lane by lane on a fixed-size array, which
 //! the compiler turns into vector instructions (4 `f64` lanes per AVX2 register, 2 per SSE2
 //! register). The expression graph and its order of operations are those of the single-state
-//! function; only fused multiply-adds are left out (lanes have none), so a lane differs from
-//! the single-state result by rounding only where that one fuses. The joints' sines and
-//! cosines come from the single-state `joint_sin_cos`, called once per state.
+//! function, and so are its fused multiply-adds (`mul_add_lanes`, fused where the
+//! single-state `mul_add` is), so that a lane is the single-state result bit for bit. The
+//! joints' sines and cosines come from the single-state kernel (`sin_cos_n`) applied to each
+//! joint's row of `B` lanes (`joint_sin_cos_rows`), inlined into the body.
+//!
+//! Under run-time CPU dispatch ([`super::dispatch`]) a batch function gets its AVX-512 copy as
+//! the single-state ones do: there the lanes' multiply-adds are fused and the kernel's
+//! polynomials too, as in the single-state AVX-512 copy.
 //!
 //! A body larger than the splitting threshold of single-state functions (a large tree) is
 //! not unrolled `B` wide: the batch function then calls the single-state function per state.
@@ -61,6 +66,8 @@ pub fn batch_functions(
         .as_deref()
         .and_then(|n| syn::parse_str::<Ident>(n).ok());
     let mut out = TokenStream::new();
+    // Which `Lanes` helpers the vectorised bodies call.
+    let (mut fuses, mut trig) = (false, false);
     for f in fns {
         if !emitted(f.name) {
             continue;
@@ -110,14 +117,28 @@ pub fn batch_functions(
         };
         let large = graph.live(f.outputs).iter().filter(|&&l| l).count() > MAX_UNSPLIT_LETS;
         let (body, how) = match runtime {
-            Some(runtime) if !large => (
-                wrap(f.single, body(Some(runtime))),
-                format!(
-                    " The unrolled code of `{0}` with every value a `Lanes<{1}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls where the target's vectors are wide (`-C target-cpu=native`; AVX2 holds 4 `{1}`s, AVX-512 8), with `B` a multiple of that width. No fused multiply-adds: a state's result may differ from `{0}`'s by rounding where that one fuses.",
+            Some(runtime) if !large => {
+                let body = body(Some(runtime));
+                let text = body.to_string();
+                fuses |= text.contains("mul_add_lanes");
+                trig |= text.contains("joint_sin_cos_rows");
+                let (avx2, avx512) = match options.scalar {
+                    crate::options::Scalar::F64 => (4, 8),
+                    crate::options::Scalar::F32 => (8, 16),
+                };
+                let wide = if options.no_std || !options.cpu_dispatch {
+                    "where the target's vectors are wide (`-C target-cpu=native`)"
+                } else {
+                    "where the CPU's vectors are wide (on x86-64 with AVX-512 this function runs a copy compiled for it wherever `{0}` does; elsewhere compile with `-C target-cpu=native`)"
+                };
+                let how = format!(
+                    " The unrolled code of `{0}` with every value a `Lanes<{1}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{1}`s, AVX-512 {avx512}). Multiply-adds are fused where `{0}`'s are: a state's result is `{0}`'s bit for bit.",
                     f.single,
                     options.scalar.as_str()
-                ),
-            ),
+                )
+                .replace("{0}", f.single);
+                (wrap(f.single, body), how)
+            }
             _ => {
                 // Per state, by iterators (no indexing, so no bounds checks): a call of the
                 // single-state function (generated with its batch form, see `generate_impl`).
@@ -143,10 +164,7 @@ pub fn batch_functions(
                         }
                         out
                     },
-                    format!(
-                        " The code of `{}` called once per state: {why}.",
-                        f.single
-                    ),
+                    format!(" The code of `{}` called once per state: {why}.", f.single),
                 )
             }
         };
@@ -162,5 +180,76 @@ pub fn batch_functions(
             }
         });
     }
+    if let Some(runtime) = runtime {
+        out.extend(lanes_helpers(options.scalar, runtime, fuses, trig));
+    }
     out
+}
+
+/// The helpers of the vectorised bodies: `mul_add_lanes` (where they fuse) and
+/// `joint_sin_cos_rows` (where they take sines and cosines), each with a `_with` form whose
+/// `F` the CPU dispatch sets ([`super::dispatch`]).
+fn lanes_helpers(
+    scalar: crate::options::Scalar,
+    runtime: &TokenStream,
+    fuses: bool,
+    trig: bool,
+) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    let lanes = quote!(#runtime::Lanes<#t, B>);
+    let mul_add = fuses.then(|| {
+        quote! {
+            /// `a·b + c` lane by lane, fused (rounded once) where [`Self::mul_add`] is: the
+            /// batch bodies' multiply-adds, the same products as the single-state bodies'.
+            #[inline(always)]
+            fn mul_add_lanes<const B: usize>(a: #lanes, b: #lanes, c: #lanes) -> #lanes {
+                Self::mul_add_lanes_with::<B, false>(a, b, c)
+            }
+
+            /// [`Self::mul_add_lanes`], fused also when `F` (the AVX-512 copy of a dispatched
+            /// batch function).
+            #[inline(always)]
+            fn mul_add_lanes_with<const B: usize, const F: bool>(
+                a: #lanes,
+                b: #lanes,
+                c: #lanes,
+            ) -> #lanes {
+                if F || cfg!(any(target_feature = "fma", target_arch = "aarch64")) {
+                    let mut out = c.0;
+                    for ((o, a), b) in out.iter_mut().zip(a.0).zip(b.0) {
+                        *o = a.mul_add(b, *o);
+                    }
+                    #runtime::Lanes(out)
+                } else {
+                    a * b + c
+                }
+            }
+        }
+    });
+    let sin_cos = trig.then(|| {
+        quote! {
+            /// The sines and cosines of `K` joint angles of `B` states each: the
+            /// `joint_sin_cos` kernel on each row of `B` lanes, inlined into the batch body.
+            #[inline(always)]
+            fn joint_sin_cos_rows<const K: usize, const B: usize>(
+                x: [#lanes; K],
+            ) -> ([#lanes; K], [#lanes; K]) {
+                Self::sin_cos_rows_with::<K, B, false>(x)
+            }
+
+            /// [`Self::joint_sin_cos_rows`], the polynomials fused when `F` (see
+            /// `sin_cos_n`).
+            #[inline(always)]
+            fn sin_cos_rows_with<const K: usize, const B: usize, const F: bool>(
+                x: [#lanes; K],
+            ) -> ([#lanes; K], [#lanes; K]) {
+                let (mut sin, mut cos) = (x, x);
+                for ((x, s), c) in x.iter().zip(&mut sin).zip(&mut cos) {
+                    (s.0, c.0) = Self::sin_cos_n::<B, B, F>(x.0, B);
+                }
+                (sin, cos)
+            }
+        }
+    });
+    quote!(#mul_add #sin_cos)
 }

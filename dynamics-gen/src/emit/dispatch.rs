@@ -38,9 +38,15 @@
 //! `avx2,fma`): on the Panda it gained nothing (−4 % to +15 %), since its 16 registers spill as
 //! SSE2's do; it is not generated.
 //!
-//! Left alone: functions with generic parameters (the batch functions), bodies split into
-//! `extern "C"` parts (the largest trees), whose nested functions cannot see `WIDE`, and
-//! bodies of fewer than [`MIN_TOKENS`] tokens.
+//! A function with `const` generic parameters (the batch functions, `f<const B: usize>`) passes
+//! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
+//! (`mul_add_lanes`, `joint_sin_cos_rows`) are fused as the scalar ones are. A batch function
+//! `X_batch` is dispatched exactly when `X` is, so that a state's result is `X`'s bit for bit
+//! on every CPU.
+//!
+//! Left alone: functions with type or lifetime parameters, bodies split into `extern "C"`
+//! parts (the largest trees), whose nested functions cannot see `WIDE`, and bodies of fewer
+//! than [`MIN_TOKENS`] tokens.
 
 use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
@@ -132,9 +138,11 @@ fn helpers(scalar: crate::options::Scalar, used: &Used) -> TokenStream {
     }
 }
 
-/// The items of an impl body, each eligible function dispatched (noted in `used`).
+/// The items of an impl body, each eligible function dispatched (noted in `used`). A batch
+/// function (`X_batch`) is dispatched exactly when its single-state function `X` is, so
+/// that the two fuse alike and give the same bits.
 fn dispatch_items(stream: TokenStream, used: &mut Used) -> TokenStream {
-    let mut out = TokenStream::new();
+    let mut items: Vec<Vec<TokenTree>> = Vec::new();
     let mut item: Vec<TokenTree> = Vec::new();
     let mut seen_fn = false;
     for tt in stream {
@@ -149,24 +157,55 @@ fn dispatch_items(stream: TokenStream, used: &mut Used) -> TokenStream {
         };
         item.push(tt);
         if end {
-            match dispatched(&item, used) {
-                Some(tokens) => {
-                    out.extend(tokens);
-                    used.any = true;
-                }
-                None => out.extend(item.drain(..)),
-            }
-            item.clear();
+            items.push(std::mem::take(&mut item));
             seen_fn = false;
+        }
+    }
+    let sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i)).collect();
+    let singles: Vec<String> = sigs
+        .iter()
+        .flatten()
+        .filter(|s| s.generic_names.is_empty())
+        .map(|s| s.name.to_string())
+        .collect();
+    let mut out = TokenStream::new();
+    for (item, sig) in items.into_iter().zip(sigs) {
+        let follows = |s: &Signature| {
+            s.generic_names.is_empty()
+                || s.name
+                    .to_string()
+                    .strip_suffix("_batch")
+                    .is_some_and(|single| singles.iter().any(|n| n == single))
+        };
+        match sig.filter(follows) {
+            Some(sig) => {
+                out.extend(dispatched(&item, sig, used));
+                used.any = true;
+            }
+            None => out.extend(item),
         }
     }
     out.extend(item);
     out
 }
 
-/// The three functions for `item` (attributes, `pub fn name(&self, …) -> R { body }`), or
-/// `None` when it is not eligible.
-fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
+/// What [`dispatched`] needs of an eligible function.
+struct Signature {
+    /// The index of `pub` in the item.
+    p: usize,
+    name: Ident,
+    /// The generic parameters without the brackets, and their names (`const` ones only).
+    generics: TokenStream,
+    generic_names: Vec<Ident>,
+    args: TokenStream,
+    arg_names: Vec<Ident>,
+    ret: TokenStream,
+    body: TokenStream,
+}
+
+/// The signature of `item` (attributes, `pub fn name(&self, …) -> R { body }`) when it is
+/// eligible, otherwise `None`.
+fn signature(item: &[TokenTree]) -> Option<Signature> {
     let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
     let p = item.iter().position(|t| is_ident(t, "pub"))?;
     if !is_ident(item.get(p + 1)?, "fn") {
@@ -175,8 +214,11 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
     let TokenTree::Ident(name) = item.get(p + 2)? else {
         return None;
     };
-    let TokenTree::Group(args) = item.get(p + 3)? else {
-        return None; // generic parameters
+    // `<const B: usize, …>`: const parameters only, passed on by name.
+    let (generics, generic_names, after) = const_generics(&item[p + 3..])?;
+    let after = p + 3 + after;
+    let TokenTree::Group(args) = item.get(after)? else {
+        return None;
     };
     if args.delimiter() != Delimiter::Parenthesis {
         return None;
@@ -184,14 +226,37 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
     let TokenTree::Group(body) = item.last()? else {
         return None;
     };
-    let ret: TokenStream = item[p + 4..item.len() - 1].iter().cloned().collect();
+    let ret: TokenStream = item[after + 1..item.len() - 1].iter().cloned().collect();
     let arg_names = receiver_and_names(args.stream())?;
     let body = body.stream();
     if !calls_arithmetic(&body) || contains_ident(&body, "extern") || size(&body) < MIN_TOKENS {
         return None;
     }
+    Some(Signature {
+        p,
+        name: name.clone(),
+        generics,
+        generic_names,
+        args: args.stream(),
+        arg_names,
+        ret,
+        body,
+    })
+}
+
+/// The three functions for the eligible `item`.
+fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStream {
+    let Signature {
+        p,
+        name,
+        generics,
+        generic_names,
+        args,
+        arg_names,
+        ret,
+        body,
+    } = sig;
     let attrs: TokenStream = item[..p].iter().cloned().collect();
-    let args = args.stream();
     let fast = format_ident!("{}_avx512", name);
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
@@ -204,33 +269,67 @@ fn dispatched(item: &[TokenTree], used: &mut Used) -> Option<TokenStream> {
         " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds and sines and cosines as \
          wide as an AVX-512 register."
     );
-    Some(quote! {
+    let (fast_generics, fast_turbofish) = if generic_names.is_empty() {
+        (quote!(), quote!())
+    } else {
+        (quote!(<#generics>), quote!(::<#(#generic_names),*>))
+    };
+    let generics = if generic_names.is_empty() {
+        quote!()
+    } else {
+        quote!(, #generics)
+    };
+    quote! {
         #attrs
         #[allow(unsafe_code)]
-        pub fn #name(#args) #ret {
+        pub fn #name #fast_generics (#args) #ret {
             #cfg
             {
                 if Self::has_avx512() {
-                    return unsafe { self.#fast(#(#arg_names),*) };
+                    return unsafe { self.#fast #fast_turbofish (#(#arg_names),*) };
                 }
             }
-            self.#body_fn::<false>(#(#arg_names),*)
+            self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
         }
 
         #[doc = #fast_doc]
         #cfg
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
-        unsafe extern "C" fn #fast(#args) #ret {
-            self.#body_fn::<true>(#(#arg_names),*)
+        unsafe extern "C" fn #fast #fast_generics (#args) #ret {
+            self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)
         }
 
         #[doc = #body_doc]
         #[inline(always)]
-        fn #body_fn<const WIDE: bool>(#args) #ret {
+        fn #body_fn<const WIDE: bool #generics>(#args) #ret {
             #fused
         }
-    })
+    }
+}
+
+/// The generic parameters at the start of `tokens` (`<const B: usize, …>`, without the
+/// brackets), their names, and the index of the token after them: all empty and 0 without
+/// any; `None` unless every parameter is a `const` one.
+fn const_generics(tokens: &[TokenTree]) -> Option<(TokenStream, Vec<Ident>, usize)> {
+    let is_punct = |t: &TokenTree, c: char| matches!(t, TokenTree::Punct(p) if p.as_char() == c);
+    if !tokens.first().is_some_and(|t| is_punct(t, '<')) {
+        return Some((TokenStream::new(), Vec::new(), 0));
+    }
+    let close = tokens.iter().position(|t| is_punct(t, '>'))?;
+    let inner = &tokens[1..close];
+    let mut names = Vec::new();
+    for param in inner.split(|t| is_punct(t, ',')).filter(|p| !p.is_empty()) {
+        match param {
+            [TokenTree::Ident(c), TokenTree::Ident(n), TokenTree::Punct(colon), ..]
+                if c == "const" && colon.as_char() == ':' =>
+            {
+                names.push(n.clone());
+            }
+            _ => return None, // a type or lifetime parameter
+        }
+    }
+    Some((inner.iter().cloned().collect(), names, close + 1))
 }
 
 /// The argument names after a `&self` receiver (`None` without one, or for a pattern
@@ -296,10 +395,19 @@ fn contains_ident(stream: &TokenStream, name: &str) -> bool {
 
 /// Whether a body calls the arithmetic helpers (so that it is worth a second copy).
 fn calls_arithmetic(body: &TokenStream) -> bool {
-    contains_ident(body, "mul_add") || contains_ident(body, "joint_sin_cos")
+    [
+        "mul_add",
+        "joint_sin_cos",
+        "mul_add_lanes",
+        "joint_sin_cos_rows",
+    ]
+    .iter()
+    .any(|f| contains_ident(body, f))
 }
 
-/// `body` with every `Self::mul_add(` turned into `Self::mul_add_with::<WIDE>(`, and every
+/// `body` with every `Self::mul_add(` turned into `Self::mul_add_with::<WIDE>(` (and
+/// `Self::mul_add_lanes(` into `Self::mul_add_lanes_with::<_, WIDE>(`, `Self::joint_sin_cos_rows(`
+/// into `Self::sin_cos_rows_with::<_, _, WIDE>(`), and every
 /// `Self::joint_sin_cos::<K, P>(x)` into
 /// `Self::sin_cos_n::<K, { Self::wide_lanes(K) }, WIDE>(x, n)` with `n` the wide lanes when
 /// `WIDE`, [`sin_cos_lanes`](super::trig) otherwise (and the polynomials fused when `WIDE`).
@@ -312,6 +420,13 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                 used.mul_add = true;
                 let call = quote!(mul_add_with::<WIDE>);
                 out.extend(call);
+            }
+            // The batch bodies' helpers (on `Lanes`), as the two above.
+            TokenTree::Ident(i) if i == "mul_add_lanes" && after_self_path(&out) => {
+                out.extend(quote!(mul_add_lanes_with::<_, WIDE>));
+            }
+            TokenTree::Ident(i) if i == "joint_sin_cos_rows" && after_self_path(&out) => {
+                out.extend(quote!(sin_cos_rows_with::<_, _, WIDE>));
             }
             TokenTree::Ident(i) if i == "joint_sin_cos" && after_self_path(&out) => {
                 // `::<K, P>(args)`: K a literal, P a literal or a `{ … }` block.
@@ -388,6 +503,28 @@ mod tests {
         let body = &body[..body.find("\n    }\n").expect("its end")];
         assert!(!body.contains("Self::mul_add("));
         assert!(body.contains("Self::sin_cos_n::<"));
+        // The batch functions pass their `B` on, and their `Lanes` helpers get `WIDE`.
+        assert!(std.contains("pub fn inverse_dynamics_batch<const B: usize>("));
+        assert!(std.contains("fn inverse_dynamics_batch_avx512<const B: usize>("));
+        assert!(std.contains("fn inverse_dynamics_batch_body<const WIDE: bool, const B: usize>("));
+        assert!(std.contains("self.inverse_dynamics_batch_avx512::<B>("));
+        assert!(std.contains("self.inverse_dynamics_batch_body::<false, B>("));
+        let batch = &std[std
+            .find("fn inverse_dynamics_batch_body")
+            .expect("a batch body")..];
+        let batch: String = batch[..batch.find("\n    }\n").expect("its end")]
+            .split_whitespace()
+            .collect();
+        assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
+        assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
+        assert!(!batch.contains("Self::mul_add_lanes("));
+        // A batch function follows its single-state function: the pendulum's bodies are too
+        // small to dispatch, and so are its batch functions, whatever their size.
+        let pendulum = crate::Builder::new("pendulum")
+            .generate()
+            .expect("generates");
+        assert!(!pendulum.contains("fn inverse_dynamics_avx512("));
+        assert!(!pendulum.contains("fn inverse_dynamics_batch_avx512"));
         for builder in [
             crate::Builder::new("ur5").no_std(true),
             crate::Builder::new("ur5").cpu_dispatch(false),

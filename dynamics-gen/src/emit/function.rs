@@ -738,7 +738,7 @@ impl FunctionBody<'_> {
     fn sin_cos_call(&self, args: &[TokenStream]) -> TokenStream {
         if self.lanes.is_some() {
             let lanes = self.lanes_ty();
-            quote!(#lanes::each2([#(#lanes::from(#args)),*], Self::joint_sin_cos::<B, B>))
+            quote!(Self::joint_sin_cos_rows([#(#lanes::from(#args)),*]))
         } else if args.len() == 1 {
             quote!(Self::joint_sin_cos::<1, 1>([#(#args),*]))
         } else {
@@ -800,10 +800,10 @@ impl FunctionBody<'_> {
     }
 
     /// Whether node `id` is a product written inline that its user fuses into a
-    /// multiply-add: with `std` only (see [`mul_add_helper`]).
+    /// multiply-add: with `std` only (see [`mul_add_helper`]); in a batch body the same
+    /// products as in the single-state body, by `mul_add_lanes`.
     fn fused(&self, bind: &[Binding], id: ExprId) -> bool {
         !self.no_std
-            && self.lanes.is_none()
             && matches!(bind[id.index()], Binding::Inline)
             && matches!(self.graph.node(id), Node::Mul(..))
     }
@@ -820,6 +820,10 @@ impl FunctionBody<'_> {
             self.expr(bind, x)
         };
         let y = self.expr(bind, y);
+        if self.lanes.is_some() {
+            let lanes = self.lanes_ty();
+            return quote!(Self::mul_add_lanes(#lanes::from(#x), #lanes::from(#y), #lanes::from(#c)));
+        }
         quote!(Self::mul_add(#x, #y, #c))
     }
 

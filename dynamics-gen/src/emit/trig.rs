@@ -167,13 +167,22 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         }
     });
     let errors = (0..p.len() - 2).map(|i| quote::format_ident!("e{}", i));
+    // Through `black_box`: the optimiser takes the call for a pure operation and, in a loop
+    // it vectorises (a batch's row of lanes), would call it on every element and select
+    // afterwards; measured, 54 % of a UR5 batch's time went into `sin_cos` of angles of 0.3.
     let fallback = if no_std {
         match scalar {
-            Scalar::F64 => quote!((::libm::sin(x), ::libm::cos(x))),
-            Scalar::F32 => quote!((::libm::sinf(x), ::libm::cosf(x))),
+            Scalar::F64 => quote!({
+                let x = ::core::hint::black_box(x);
+                (::libm::sin(x), ::libm::cos(x))
+            }),
+            Scalar::F32 => quote!({
+                let x = ::core::hint::black_box(x);
+                (::libm::sinf(x), ::libm::cosf(x))
+            }),
         }
     } else {
-        quote!(x.sin_cos())
+        quote!(::core::hint::black_box(x).sin_cos())
     };
     let doc_bound = match scalar {
         Scalar::F64 => " at most 2 ulp from the exact values for |x| ≤ 10⁶;",

@@ -1,0 +1,140 @@
+//! Batch against single calls, as a user crate gets the code (bench/batch.sh generates the
+//! robots into `src/generated/`): for each robot and function, 8 consecutive states of 1,024
+//! seeded random ones (angles in ±π, velocities and accelerations in ±2, as the other
+//! harnesses draw them) through 8 single-state calls and through one `*_batch::<8>` call,
+//! every argument and result through `black_box`; median of 7 runs of 5,000 rounds each,
+//! the two interleaved run by run. One line per robot and function:
+//! `ROBOT FUNCTION SINGLE_NS_PER_STATE BATCH_NS_PER_STATE GAIN`.
+
+#![allow(dead_code)]
+
+use nalgebra::SVector;
+use std::hint::black_box;
+use std::time::Instant;
+
+include!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/generated/robots.rs"));
+
+const B: usize = 8;
+const ROUNDS: usize = 5_000;
+
+/// 1,024 states, as arrays of `B` consecutive states each (128 of them).
+#[allow(clippy::type_complexity)]
+fn states<const N: usize>() -> Vec<([SVector<f64, N>; B], [SVector<f64, N>; B], [SVector<f64, N>; B])> {
+    let mut s = 0x1234_5678u64;
+    let mut r = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    (0..1024 / B)
+        .map(|_| {
+            let mut q = [SVector::zeros(); B];
+            let mut v = [SVector::zeros(); B];
+            let mut a = [SVector::zeros(); B];
+            for l in 0..B {
+                q[l] = SVector::from_fn(|_, _| std::f64::consts::PI * r());
+                v[l] = SVector::from_fn(|_, _| 2.0 * r());
+                a[l] = SVector::from_fn(|_, _| 2.0 * r());
+            }
+            (q, v, a)
+        })
+        .collect()
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// ns per state of `single` and `batch` (each called with a round's index), interleaved.
+fn pair(mut single: impl FnMut(usize), mut batch: impl FnMut(usize)) -> (f64, f64) {
+    let run = |f: &mut dyn FnMut(usize)| {
+        let t = Instant::now();
+        for i in 0..ROUNDS {
+            f(i & (1024 / B - 1));
+        }
+        t.elapsed().as_nanos() as f64 / (ROUNDS * B) as f64
+    };
+    let (mut s, mut b) = (Vec::new(), Vec::new());
+    for _ in 0..7 {
+        s.push(run(&mut single));
+        b.push(run(&mut batch));
+    }
+    (median(s), median(b))
+}
+
+macro_rules! bench {
+    ($name:expr, $n:literal, $ty:path) => {{
+        let st = states::<$n>();
+        let r = <$ty>::default();
+        let line = |f: &str, (s, b): (f64, f64)| {
+            println!("{} {f} {s:.1} {b:.1} {:.2}", $name, s / b)
+        };
+        line(
+            "inverse_dynamics",
+            pair(
+                |i| {
+                    let (q, v, a) = black_box(&st[i]);
+                    for l in 0..B {
+                        black_box(r.inverse_dynamics(&q[l], &v[l], &a[l]));
+                    }
+                },
+                |i| {
+                    let (q, v, a) = black_box(&st[i]);
+                    black_box(r.inverse_dynamics_batch(q, v, a));
+                },
+            ),
+        );
+        line(
+            "forward_dynamics",
+            pair(
+                |i| {
+                    let (q, v, a) = black_box(&st[i]);
+                    for l in 0..B {
+                        black_box(r.forward_dynamics(&q[l], &v[l], &a[l]));
+                    }
+                },
+                |i| {
+                    let (q, v, a) = black_box(&st[i]);
+                    black_box(r.forward_dynamics_batch(q, v, a));
+                },
+            ),
+        );
+        line(
+            "mass_matrix",
+            pair(
+                |i| {
+                    let (q, _, _) = black_box(&st[i]);
+                    for l in 0..B {
+                        black_box(r.mass_matrix(&q[l]));
+                    }
+                },
+                |i| {
+                    let (q, _, _) = black_box(&st[i]);
+                    black_box(r.mass_matrix_batch(q));
+                },
+            ),
+        );
+        line(
+            "gravity",
+            pair(
+                |i| {
+                    let (q, _, _) = black_box(&st[i]);
+                    for l in 0..B {
+                        black_box(r.gravity(&q[l]));
+                    }
+                },
+                |i| {
+                    let (q, _, _) = black_box(&st[i]);
+                    black_box(r.gravity_batch(q));
+                },
+            ),
+        );
+    }};
+}
+
+fn main() {
+    bench!("ur5", 6, ur5::Ur5);
+    bench!("panda", 7, panda::Panda);
+}
