@@ -23,6 +23,6 @@ for m in ur5 panda; do
   echo "mod $m { include!(concat!(env!(\"CARGO_MANIFEST_DIR\"), \"/src/generated/$m.rs\")); }"
 done > "$OUT/robots.rs"
 if [ "${NATIVE:-0}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
-echo "# $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); RUSTFLAGS='${RUSTFLAGS:-}'; B = 8"
-echo "# robot function single_ns/state batch_ns/state gain"
+echo "# $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); RUSTFLAGS='${RUSTFLAGS:-}'; B = 8 and 4"
+echo "# robot function B single_ns/state batch_ns/state gain"
 cd "$HERE/batch" && cargo build -q --release && ./target/release/batch-bench

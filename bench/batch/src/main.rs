@@ -1,10 +1,10 @@
 //! Batch against single calls, as a user crate gets the code (bench/batch.sh generates the
-//! robots into `src/generated/`): for each robot and function, 8 consecutive states of 1,024
-//! seeded random ones (angles in ±π, velocities and accelerations in ±2, as the other
-//! harnesses draw them) through 8 single-state calls and through one `*_batch::<8>` call,
-//! every argument and result through `black_box`; median of 7 runs of 5,000 rounds each,
-//! the two interleaved run by run. One line per robot and function:
-//! `ROBOT FUNCTION SINGLE_NS_PER_STATE BATCH_NS_PER_STATE GAIN`.
+//! robots into `src/generated/`): for each robot, function and `B` (8, then 4), `B`
+//! consecutive states of 1,024 seeded random ones (angles in ±π, velocities and accelerations
+//! in ±2, as the other harnesses draw them) through `B` single-state calls and through one
+//! `*_batch::<B>` call, every argument and result through `black_box`; median of 7 runs of
+//! 40,000 states each, the two interleaved run by run. One line per robot, function and `B`:
+//! `ROBOT FUNCTION B SINGLE_NS_PER_STATE BATCH_NS_PER_STATE GAIN`.
 
 #![allow(dead_code)]
 
@@ -12,14 +12,21 @@ use nalgebra::SVector;
 use std::hint::black_box;
 use std::time::Instant;
 
-include!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/generated/robots.rs"));
+include!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/src/generated/robots.rs"
+));
 
-const B: usize = 8;
-const ROUNDS: usize = 5_000;
+/// States per run.
+const STATES: usize = 40_000;
 
 /// 1,024 states, as arrays of `B` consecutive states each (128 of them).
 #[allow(clippy::type_complexity)]
-fn states<const N: usize>() -> Vec<([SVector<f64, N>; B], [SVector<f64, N>; B], [SVector<f64, N>; B])> {
+fn states<const N: usize, const B: usize>() -> Vec<(
+    [SVector<f64, N>; B],
+    [SVector<f64, N>; B],
+    [SVector<f64, N>; B],
+)> {
     let mut s = 0x1234_5678u64;
     let mut r = || {
         s = s
@@ -48,13 +55,13 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// ns per state of `single` and `batch` (each called with a round's index), interleaved.
-fn pair(mut single: impl FnMut(usize), mut batch: impl FnMut(usize)) -> (f64, f64) {
+fn pair<const B: usize>(mut single: impl FnMut(usize), mut batch: impl FnMut(usize)) -> (f64, f64) {
     let run = |f: &mut dyn FnMut(usize)| {
         let t = Instant::now();
-        for i in 0..ROUNDS {
+        for i in 0..STATES / B {
             f(i & (1024 / B - 1));
         }
-        t.elapsed().as_nanos() as f64 / (ROUNDS * B) as f64
+        t.elapsed().as_nanos() as f64 / STATES as f64
     };
     let (mut s, mut b) = (Vec::new(), Vec::new());
     for _ in 0..7 {
@@ -65,15 +72,15 @@ fn pair(mut single: impl FnMut(usize), mut batch: impl FnMut(usize)) -> (f64, f6
 }
 
 macro_rules! bench {
-    ($name:expr, $n:literal, $ty:path) => {{
-        let st = states::<$n>();
+    ($name:expr, $n:literal, $ty:path, $b:literal) => {{
+        const B: usize = $b;
+        let st = states::<$n, B>();
         let r = <$ty>::default();
-        let line = |f: &str, (s, b): (f64, f64)| {
-            println!("{} {f} {s:.1} {b:.1} {:.2}", $name, s / b)
-        };
+        let line =
+            |f: &str, (s, b): (f64, f64)| println!("{} {f} {B} {s:.1} {b:.1} {:.2}", $name, s / b);
         line(
             "inverse_dynamics",
-            pair(
+            pair::<B>(
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
                     for l in 0..B {
@@ -88,7 +95,7 @@ macro_rules! bench {
         );
         line(
             "forward_dynamics",
-            pair(
+            pair::<B>(
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
                     for l in 0..B {
@@ -103,7 +110,7 @@ macro_rules! bench {
         );
         line(
             "mass_matrix",
-            pair(
+            pair::<B>(
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
                     for l in 0..B {
@@ -118,7 +125,7 @@ macro_rules! bench {
         );
         line(
             "gravity",
-            pair(
+            pair::<B>(
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
                     for l in 0..B {
@@ -135,6 +142,8 @@ macro_rules! bench {
 }
 
 fn main() {
-    bench!("ur5", 6, ur5::Ur5);
-    bench!("panda", 7, panda::Panda);
+    bench!("ur5", 6, ur5::Ur5, 8);
+    bench!("panda", 7, panda::Panda, 8);
+    bench!("ur5", 6, ur5::Ur5, 4);
+    bench!("panda", 7, panda::Panda, 4);
 }

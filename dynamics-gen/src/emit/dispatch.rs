@@ -48,6 +48,7 @@
 //! parts (the largest trees), whose nested functions cannot see `WIDE`, and bodies of fewer
 //! than [`MIN_TOKENS`] tokens.
 
+use crate::options::Scalar;
 use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
@@ -66,7 +67,7 @@ struct Used {
 
 /// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
 /// the two helpers when any was; unchanged when none is.
-pub fn apply(impl_block: TokenStream, scalar: crate::options::Scalar) -> TokenStream {
+pub fn apply(impl_block: TokenStream, scalar: Scalar) -> TokenStream {
     let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
     let Some((pos, body)) = tokens.iter().enumerate().find_map(|(k, t)| match t {
         TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((k, g.clone())),
@@ -75,7 +76,7 @@ pub fn apply(impl_block: TokenStream, scalar: crate::options::Scalar) -> TokenSt
         return tokens.into_iter().collect();
     };
     let mut used = Used::default();
-    let items = dispatch_items(body.stream(), &mut used);
+    let items = dispatch_items(body.stream(), &mut used, scalar);
     if !used.any {
         return tokens.into_iter().collect();
     }
@@ -87,12 +88,12 @@ pub fn apply(impl_block: TokenStream, scalar: crate::options::Scalar) -> TokenSt
 }
 
 /// The private helpers the dispatched functions call.
-fn helpers(scalar: crate::options::Scalar, used: &Used) -> TokenStream {
+fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let cfg = dispatch_cfg();
     let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
-        crate::options::Scalar::F64 => 8,
-        crate::options::Scalar::F32 => 16,
+        Scalar::F64 => 8,
+        Scalar::F32 => 16,
     });
     let mul_add = used.mul_add.then(|| {
         quote! {
@@ -141,7 +142,7 @@ fn helpers(scalar: crate::options::Scalar, used: &Used) -> TokenStream {
 /// The items of an impl body, each eligible function dispatched (noted in `used`). A batch
 /// function (`X_batch`) is dispatched exactly when its single-state function `X` is, so
 /// that the two fuse alike and give the same bits.
-fn dispatch_items(stream: TokenStream, used: &mut Used) -> TokenStream {
+fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> TokenStream {
     let mut items: Vec<Vec<TokenTree>> = Vec::new();
     let mut item: Vec<TokenTree> = Vec::new();
     let mut seen_fn = false;
@@ -161,7 +162,7 @@ fn dispatch_items(stream: TokenStream, used: &mut Used) -> TokenStream {
             seen_fn = false;
         }
     }
-    let sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i)).collect();
+    let sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i, scalar)).collect();
     let singles: Vec<String> = sigs
         .iter()
         .flatten()
@@ -205,7 +206,7 @@ struct Signature {
 
 /// The signature of `item` (attributes, `pub fn name(&self, …) -> R { body }`) when it is
 /// eligible, otherwise `None`.
-fn signature(item: &[TokenTree]) -> Option<Signature> {
+fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
     let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
     let p = item.iter().position(|t| is_ident(t, "pub"))?;
     if !is_ident(item.get(p + 1)?, "fn") {
@@ -229,7 +230,10 @@ fn signature(item: &[TokenTree]) -> Option<Signature> {
     let ret: TokenStream = item[after + 1..item.len() - 1].iter().cloned().collect();
     let arg_names = receiver_and_names(args.stream())?;
     let body = body.stream();
-    if !calls_arithmetic(&body) || contains_ident(&body, "extern") || size(&body) < MIN_TOKENS {
+    if !calls_arithmetic(&body)
+        || contains_ident(&body, "extern")
+        || (size(&body) < MIN_TOKENS && !several_angles(&body, scalar))
+    {
         return None;
     }
     Some(Signature {
@@ -369,9 +373,31 @@ fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
         .collect()
 }
 
-/// The smallest body (in tokens) worth a second copy: below it (a pendulum's functions, a
-/// few dozen operations) the check of the CPU would cost a noticeable part of the call.
+/// The smallest body (in tokens) worth a second copy unless it takes several sines and
+/// cosines at once ([`several_angles`]): below it (a pendulum's functions, a few dozen
+/// operations) the check of the CPU would cost a noticeable part of the call.
 const MIN_TOKENS: usize = 400;
+
+/// Whether `body` takes the sines and cosines of more angles at once than one SSE2 register
+/// holds (`Self::joint_sin_cos::<K, …>` with `K` above 2 `f64`s or 4 `f32`s): then the
+/// AVX-512 copy computes them in one 8-lane (16-lane) pass where the portable copy takes
+/// several, which pays for the CPU check even in a short body (the UR5's `gravity`: three
+/// angles and a dozen operations, 18 ns portable, 8 ns compiled for the CPU).
+fn several_angles(body: &TokenStream, scalar: Scalar) -> bool {
+    let narrow = match scalar {
+        Scalar::F64 => 2,
+        Scalar::F32 => 4,
+    };
+    let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
+    tokens.iter().enumerate().any(|(k, t)| match t {
+        TokenTree::Ident(i) if i == "joint_sin_cos" => matches!(
+            tokens.get(k + 4),
+            Some(TokenTree::Literal(l)) if l.to_string().parse::<usize>().is_ok_and(|k| k > narrow)
+        ),
+        TokenTree::Group(g) => several_angles(&g.stream(), scalar),
+        _ => false,
+    })
+}
 
 /// The number of tokens of `stream`, groups' contents included.
 fn size(stream: &TokenStream) -> usize {
@@ -518,6 +544,8 @@ mod tests {
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
         assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
         assert!(!batch.contains("Self::mul_add_lanes("));
+        // A short body with several angles is dispatched (the UR5's gravity).
+        assert!(std.contains("fn gravity_avx512("));
         // A batch function follows its single-state function: the pendulum's bodies are too
         // small to dispatch, and so are its batch functions, whatever their size.
         let pendulum = crate::Builder::new("pendulum")
