@@ -238,14 +238,26 @@ fn lanes_helpers(
             }
 
             /// [`Self::joint_sin_cos_rows`], the polynomials fused when `F` (see
-            /// `sin_cos_n`).
+            /// `sin_cos_n`). One loop over all `K·B` elements, so that it vectorises across
+            /// rows when `B` is narrower than the target's vectors.
             #[inline(always)]
             fn sin_cos_rows_with<const K: usize, const B: usize, const F: bool>(
                 x: [#lanes; K],
             ) -> ([#lanes; K], [#lanes; K]) {
+                let mut xs = [[0.0; B]; K];
+                for (d, x) in xs.iter_mut().zip(&x) {
+                    *d = x.0;
+                }
+                let (mut s, mut c) = ([[0.0; B]; K], [[0.0; B]; K]);
+                Self::sin_cos_into::<F>(
+                    xs.as_flattened(),
+                    s.as_flattened_mut(),
+                    c.as_flattened_mut(),
+                    K * B,
+                );
                 let (mut sin, mut cos) = (x, x);
-                for ((x, s), c) in x.iter().zip(&mut sin).zip(&mut cos) {
-                    (s.0, c.0) = Self::sin_cos_n::<B, B, F>(x.0, B);
+                for (((s, c), sin), cos) in s.iter().zip(&c).zip(&mut sin).zip(&mut cos) {
+                    (sin.0, cos.0) = (*s, *c);
                 }
                 (sin, cos)
             }

@@ -226,7 +226,6 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
             x: [#t; K],
             n: usize,
         ) -> ([#t; P], [#t; P]) {
-            #fma
             let x = {
                 let mut padded = [0.0; P];
                 for (p, x) in padded.iter_mut().zip(x) {
@@ -236,6 +235,16 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
             };
             let mut sin = [0.0; P];
             let mut cos = [0.0; P];
+            Self::sin_cos_into::<F>(&x, &mut sin, &mut cos, n);
+            (sin, cos)
+        }
+
+        /// The loops of [`Self::sin_cos_n`]: the sines and cosines of the first `n` elements
+        /// of `x` into `sin` and `cos` (a fixed-size array's elements once inlined, `n` the
+        /// trip count).
+        #[inline(always)]
+        fn sin_cos_into<const F: bool>(x: &[#t], sin: &mut [#t], cos: &mut [#t], n: usize) {
+            #fma
             for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
                 let y = fma(x, #frac_2_pi, #round);
                 let k = y - #round;
@@ -261,7 +270,6 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                     (*sin, *cos) = #fallback;
                 }
             }
-            (sin, cos)
         }
 
         #[doc = #lanes_doc]
