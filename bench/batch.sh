@@ -5,6 +5,7 @@
 # against one *_batch::<8> call on the same 8 states, medians of 7 interleaved runs).
 #   bash bench/batch.sh
 #   NATIVE=1 bash bench/batch.sh
+#   BY_REF=1 bash bench/batch.sh      # results to black_box by reference (see bench/README.md)
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -25,4 +26,6 @@ done > "$OUT/robots.rs"
 if [ "${NATIVE:-0}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
 echo "# $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); RUSTFLAGS='${RUSTFLAGS:-}'; B = 8 and 4"
 echo "# robot function B single_ns/state batch_ns/state gain"
-cd "$HERE/batch" && cargo build -q --release && ./target/release/batch-bench
+FEATURES=()
+if [ "${BY_REF:-0}" = 1 ]; then FEATURES=(--features by-ref); echo "# results to black_box by reference"; fi
+cd "$HERE/batch" && cargo build -q --release "${FEATURES[@]}" && ./target/release/batch-bench

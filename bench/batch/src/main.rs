@@ -2,7 +2,7 @@
 //! robots into `src/generated/`): for each robot, function and `B` (8, then 4), `B`
 //! consecutive states of 1,024 seeded random ones (angles in ±π, velocities and accelerations
 //! in ±2, as the other harnesses draw them) through `B` single-state calls and through one
-//! `*_batch::<B>` call, every argument and result through `black_box`; median of 7 runs of
+//! `*_batch::<B>` call, every argument and result through `black_box` (`consume!`); median of 7 runs of
 //! 40,000 states each, the two interleaved run by run. One line per robot, function and `B`:
 //! `ROBOT FUNCTION B SINGLE_NS_PER_STATE BATCH_NS_PER_STATE GAIN`.
 
@@ -49,6 +49,19 @@ fn states<const N: usize, const B: usize>() -> Vec<(
         .collect()
 }
 
+/// Hands a result to `black_box`: by value (the default; the copy reads the returned value),
+/// or by reference with the `by-ref` feature (`BY_REF=1 bash bench/batch.sh`). The single
+/// calls' times depend on it (see bench/README.md). A macro, so that the value is not moved
+/// into a function first (which changed the single calls' times again).
+macro_rules! consume {
+    ($e:expr) => {{
+        #[cfg(not(feature = "by-ref"))]
+        black_box($e);
+        #[cfg(feature = "by-ref")]
+        black_box(&$e);
+    }};
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     v[v.len() / 2]
@@ -84,12 +97,12 @@ macro_rules! bench {
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
                     for l in 0..B {
-                        black_box(r.inverse_dynamics(&q[l], &v[l], &a[l]));
+                        consume!(r.inverse_dynamics(&q[l], &v[l], &a[l]));
                     }
                 },
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
-                    black_box(r.inverse_dynamics_batch(q, v, a));
+                    consume!(r.inverse_dynamics_batch(q, v, a));
                 },
             ),
         );
@@ -99,12 +112,12 @@ macro_rules! bench {
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
                     for l in 0..B {
-                        black_box(r.forward_dynamics(&q[l], &v[l], &a[l]));
+                        consume!(r.forward_dynamics(&q[l], &v[l], &a[l]));
                     }
                 },
                 |i| {
                     let (q, v, a) = black_box(&st[i]);
-                    black_box(r.forward_dynamics_batch(q, v, a));
+                    consume!(r.forward_dynamics_batch(q, v, a));
                 },
             ),
         );
@@ -114,12 +127,12 @@ macro_rules! bench {
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
                     for l in 0..B {
-                        black_box(r.mass_matrix(&q[l]));
+                        consume!(r.mass_matrix(&q[l]));
                     }
                 },
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
-                    black_box(r.mass_matrix_batch(q));
+                    consume!(r.mass_matrix_batch(q));
                 },
             ),
         );
@@ -129,12 +142,12 @@ macro_rules! bench {
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
                     for l in 0..B {
-                        black_box(r.gravity(&q[l]));
+                        consume!(r.gravity(&q[l]));
                     }
                 },
                 |i| {
                     let (q, _, _) = black_box(&st[i]);
-                    black_box(r.gravity_batch(q));
+                    consume!(r.gravity_batch(q));
                 },
             ),
         );
