@@ -84,6 +84,28 @@ fn pair<const B: usize>(mut single: impl FnMut(usize), mut batch: impl FnMut(usi
     (median(s), median(b))
 }
 
+/// One line: `$single` on each of `B` states against `$batch` on all of them, the state's
+/// `(q, q̇, x)` bound to `$pat` (a pattern naming the arguments `$arg`).
+macro_rules! row {
+    ($line:ident, $r:ident, $st:ident, $single:ident, $batch:ident, $pat:pat, $($arg:ident),+) => {
+        $line(
+            stringify!($single),
+            pair::<B>(
+                |i| {
+                    let $pat = black_box(&$st[i]);
+                    for l in 0..B {
+                        consume!($r.$single($(&$arg[l]),+));
+                    }
+                },
+                |i| {
+                    let $pat = black_box(&$st[i]);
+                    consume!($r.$batch($($arg),+));
+                },
+            ),
+        )
+    };
+}
+
 macro_rules! bench {
     ($name:expr, $n:literal, $ty:path, $b:literal) => {{
         const B: usize = $b;
@@ -91,66 +113,30 @@ macro_rules! bench {
         let r = <$ty>::default();
         let line =
             |f: &str, (s, b): (f64, f64)| println!("{} {f} {B} {s:.1} {b:.1} {:.2}", $name, s / b);
-        line(
-            "inverse_dynamics",
-            pair::<B>(
-                |i| {
-                    let (q, v, a) = black_box(&st[i]);
-                    for l in 0..B {
-                        consume!(r.inverse_dynamics(&q[l], &v[l], &a[l]));
-                    }
-                },
-                |i| {
-                    let (q, v, a) = black_box(&st[i]);
-                    consume!(r.inverse_dynamics_batch(q, v, a));
-                },
-            ),
+        row!(
+            line,
+            r,
+            st,
+            inverse_dynamics,
+            inverse_dynamics_batch,
+            (q, v, a),
+            q,
+            v,
+            a
         );
-        line(
-            "forward_dynamics",
-            pair::<B>(
-                |i| {
-                    let (q, v, a) = black_box(&st[i]);
-                    for l in 0..B {
-                        consume!(r.forward_dynamics(&q[l], &v[l], &a[l]));
-                    }
-                },
-                |i| {
-                    let (q, v, a) = black_box(&st[i]);
-                    consume!(r.forward_dynamics_batch(q, v, a));
-                },
-            ),
+        row!(
+            line,
+            r,
+            st,
+            forward_dynamics,
+            forward_dynamics_batch,
+            (q, v, a),
+            q,
+            v,
+            a
         );
-        line(
-            "mass_matrix",
-            pair::<B>(
-                |i| {
-                    let (q, _, _) = black_box(&st[i]);
-                    for l in 0..B {
-                        consume!(r.mass_matrix(&q[l]));
-                    }
-                },
-                |i| {
-                    let (q, _, _) = black_box(&st[i]);
-                    consume!(r.mass_matrix_batch(q));
-                },
-            ),
-        );
-        line(
-            "gravity",
-            pair::<B>(
-                |i| {
-                    let (q, _, _) = black_box(&st[i]);
-                    for l in 0..B {
-                        consume!(r.gravity(&q[l]));
-                    }
-                },
-                |i| {
-                    let (q, _, _) = black_box(&st[i]);
-                    consume!(r.gravity_batch(q));
-                },
-            ),
-        );
+        row!(line, r, st, mass_matrix, mass_matrix_batch, (q, _, _), q);
+        row!(line, r, st, gravity, gravity_batch, (q, _, _), q);
     }};
 }
 

@@ -8,8 +8,8 @@
 //! register). The expression graph and its order of operations are those of the single-state
 //! function, and so are its fused multiply-adds (`mul_add_lanes`, fused where the
 //! single-state `mul_add` is), so that a lane is the single-state result bit for bit. The
-//! joints' sines and cosines come from the single-state kernel (`sin_cos_n`) applied to each
-//! joint's row of `B` lanes (`joint_sin_cos_rows`), inlined into the body.
+//! joints' sines and cosines come from the single-state kernel's loop (`sin_cos_into`) run
+//! once over all `K·B` angles (`joint_sin_cos_rows`), inlined into the body.
 //!
 //! Under run-time CPU dispatch ([`super::dispatch`]) a batch function gets its AVX-512 copy as
 //! the single-state ones do: there the lanes' multiply-adds are fused and the kernel's
@@ -126,17 +126,16 @@ pub fn batch_functions(
                     crate::options::Scalar::F64 => (4, 8),
                     crate::options::Scalar::F32 => (8, 16),
                 };
+                let single = f.single;
                 let wide = if options.no_std || !options.cpu_dispatch {
-                    "where the target's vectors are wide (`-C target-cpu=native`)"
+                    "where the target's vectors are wide (`-C target-cpu=native`)".to_string()
                 } else {
-                    "where the CPU's vectors are wide (on x86-64 with AVX-512 this function runs a copy compiled for it wherever `{0}` does; elsewhere compile with `-C target-cpu=native`)"
+                    format!("where the CPU's vectors are wide (on x86-64 with AVX-512 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
                 };
                 let how = format!(
-                    " The unrolled code of `{0}` with every value a `Lanes<{1}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{1}`s, AVX-512 {avx512}). Multiply-adds are fused where `{0}`'s are: a state's result is `{0}`'s bit for bit.",
-                    f.single,
+                    " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}). Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
                     options.scalar.as_str()
-                )
-                .replace("{0}", f.single);
+                );
                 (wrap(f.single, body), how)
             }
             _ => {
@@ -229,7 +228,7 @@ fn lanes_helpers(
     let sin_cos = trig.then(|| {
         quote! {
             /// The sines and cosines of `K` joint angles of `B` states each: the
-            /// `joint_sin_cos` kernel on each row of `B` lanes, inlined into the batch body.
+            /// `joint_sin_cos` kernel on all `K·B` angles, inlined into the batch body.
             #[inline(always)]
             fn joint_sin_cos_rows<const K: usize, const B: usize>(
                 x: [#lanes; K],
