@@ -11,6 +11,7 @@
 # Pinocchio's code-generated functions (bench/run_codegen.sh) as a second ratio.
 #   bash bench/unseen.sh
 #   NATIVE=0 CODEGEN=1 bash bench/unseen.sh
+#   BY_REF=1 ...: our results to black_box by reference (as Pinocchio's stay in its Data)
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -76,8 +77,10 @@ if [ "${CODEGEN:-0}" = 1 ]; then
   tee -a "$WORK/pinocchio.txt" < "$CACHE/pinocchio_codegen.txt"
 fi
 if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
-echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'"
-(cd "$HERE/unseen" && cargo build -q --release && ./target/release/unseen-arms-bench) | tee "$WORK/ours.txt"
+FEATURES=()
+if [ "${BY_REF:-0}" = 1 ]; then FEATURES=(--features by-ref); fi
+echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'${FEATURES:+, results to black_box by reference}"
+(cd "$HERE/unseen" && cargo run -q --release "${FEATURES[@]}") | tee "$WORK/ours.txt"
 
 # 4. Side by side (xarm7_snapped against Pinocchio on the file as written).
 "$VENV/bin/python" - "$WORK/pinocchio.txt" "$WORK/ours.txt" <<'PY'

@@ -1,6 +1,8 @@
 //! Times the generated functions of the arms bench/unseen.sh generates into
 //! `src/generated/` (1,024 seeded random states in ±2 rad and ±1, cycled through `black_box`;
 //! median of 7 runs of 20,000 calls), one line per robot and function: `ROBOT FUNCTION NS`.
+//! Results go to `black_box` by value, or by reference with the `by-ref` feature
+//! (`BY_REF=1 bash bench/unseen.sh`), as Pinocchio's benchmarks leave theirs in `Data`.
 
 use nalgebra::SVector;
 use std::hint::black_box;
@@ -28,6 +30,17 @@ fn states<const N: usize>() -> Vec<(SVector<f64, N>, SVector<f64, N>, SVector<f6
             )
         })
         .collect()
+}
+
+/// Hands a result to `black_box` by value (the default) or by reference (feature `by-ref`):
+/// a macro, so that the value is not moved into a function first.
+macro_rules! consume {
+    ($e:expr) => {{
+        #[cfg(not(feature = "by-ref"))]
+        black_box($e);
+        #[cfg(feature = "by-ref")]
+        black_box(&$e);
+    }};
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -58,59 +71,59 @@ macro_rules! bench {
             "inverse_dynamics",
             time(|i| {
                 let s = &st[i];
-                black_box(r.inverse_dynamics(black_box(&s.0), &s.1, &s.2));
+                consume!(r.inverse_dynamics(black_box(&s.0), &s.1, &s.2));
             }),
         );
         line(
             "coriolis",
             time(|i| {
                 let s = &st[i];
-                black_box(r.coriolis(black_box(&s.0), &s.1));
+                consume!(r.coriolis(black_box(&s.0), &s.1));
             }),
         );
         line(
             "mass_matrix",
             time(|i| {
-                black_box(r.mass_matrix(black_box(&st[i].0)));
+                consume!(r.mass_matrix(black_box(&st[i].0)));
             }),
         );
         line(
             "gravity",
             time(|i| {
-                black_box(r.gravity(black_box(&st[i].0)));
+                consume!(r.gravity(black_box(&st[i].0)));
             }),
         );
         line(
             "forward_dynamics",
             time(|i| {
                 let s = &st[i];
-                black_box(r.forward_dynamics(black_box(&s.0), &s.1, &s.2));
+                consume!(r.forward_dynamics(black_box(&s.0), &s.1, &s.2));
             }),
         );
         line(
             "inverse_dynamics_derivatives",
             time(|i| {
                 let s = &st[i];
-                black_box(r.inverse_dynamics_derivatives(black_box(&s.0), &s.1, &s.2));
+                consume!(r.inverse_dynamics_derivatives(black_box(&s.0), &s.1, &s.2));
             }),
         );
         line(
             "forward_dynamics_with_derivatives",
             time(|i| {
                 let s = &st[i];
-                black_box(r.forward_dynamics_with_derivatives(black_box(&s.0), &s.1, &s.2));
+                consume!(r.forward_dynamics_with_derivatives(black_box(&s.0), &s.1, &s.2));
             }),
         );
         line(
             "mass_matrix_inverse",
             time(|i| {
-                black_box(r.mass_matrix_inverse(black_box(&st[i].0)));
+                consume!(r.mass_matrix_inverse(black_box(&st[i].0)));
             }),
         );
         line(
             "gravity_derivative",
             time(|i| {
-                black_box(r.gravity_derivative(black_box(&st[i].0)));
+                consume!(r.gravity_derivative(black_box(&st[i].0)));
             }),
         );
     }};
