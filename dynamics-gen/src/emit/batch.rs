@@ -116,7 +116,7 @@ pub fn batch_functions(
             .tokens()
         };
         let large = graph.live(f.outputs).iter().filter(|&&l| l).count() > MAX_UNSPLIT_LETS;
-        let (body, how) = match runtime {
+        let (body, how, inline) = match runtime {
             Some(runtime) if !large => {
                 let body = body(Some(runtime));
                 let text = body.to_string();
@@ -136,7 +136,11 @@ pub fn batch_functions(
                     " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}). Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
                     options.scalar.as_str()
                 );
-                (wrap(f.single, body), how)
+                // Never inlined: where it is not dispatched (`-C target-cpu=native`, other
+                // architectures, `no_std`) this function holds the whole `B`-wide body, and
+                // inlined into a caller's loop it ran 1.1–1.4× slower (UR5 and Panda, B = 8,
+                // native); where it is, `dispatch` makes the small wrapper `#[inline]` again.
+                (wrap(f.single, body), how, quote!(#[inline(never)]))
             }
             _ => {
                 // Per state, by iterators (no indexing, so no bounds checks): a call of the
@@ -164,6 +168,7 @@ pub fn batch_functions(
                         out
                     },
                     format!(" The code of `{}` called once per state: {why}.", f.single),
+                    quote!(#[inline]),
                 )
             }
         };
@@ -172,7 +177,7 @@ pub fn batch_functions(
             #[doc = #doc]
             #[doc = ""]
             #[doc = #how]
-            #[inline]
+            #inline
             #[must_use]
             pub fn #name<const B: usize>(&self, #(#params),*) -> [#result; B] {
                 #body

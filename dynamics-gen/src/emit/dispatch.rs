@@ -42,7 +42,9 @@
 //! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
 //! (`mul_add_lanes`, `joint_sin_cos_rows`) are fused as the scalar ones are. A batch function
 //! `X_batch` is dispatched exactly when `X` is, so that a state's result is `X`'s bit for bit
-//! on every CPU.
+//! on every CPU. A batch function comes `#[inline(never)]` (it holds the whole `B`-wide body
+//! wherever it is not dispatched); its dispatching wrapper is `#[inline]` under the `cfg`
+//! above and keeps `#[inline(never)]` outside it.
 //!
 //! Left alone: functions with type or lifetime parameters, bodies split into `extern "C"`
 //! parts (the largest trees), whose nested functions cannot see `WIDE`, and bodies of fewer
@@ -260,7 +262,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
         ret,
         body,
     } = sig;
-    let attrs: TokenStream = item[..p].iter().cloned().collect();
+    let attrs = inline_when_dispatched(&item[..p]);
     let fast = format_ident!("{}_avx512", name);
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
@@ -310,6 +312,32 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
             #fused
         }
     }
+}
+
+/// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
+/// [`super::batch`]) made `#[inline]` where the dispatch exists: there the function is only
+/// the small wrapper, and it stays out of line elsewhere, where it holds the body.
+fn inline_when_dispatched(attrs: &[TokenTree]) -> TokenStream {
+    let never = quote!(inline(never)).to_string();
+    let cond = quote!(all(target_arch = "x86_64", not(target_feature = "avx512f")));
+    let mut out = TokenStream::new();
+    let mut k = 0;
+    while k < attrs.len() {
+        let is_never = matches!(&attrs[k], TokenTree::Punct(p) if p.as_char() == '#')
+            && matches!(attrs.get(k + 1), Some(TokenTree::Group(g))
+                if g.delimiter() == Delimiter::Bracket && g.stream().to_string() == never);
+        if is_never {
+            out.extend(quote! {
+                #[cfg_attr(#cond, inline)]
+                #[cfg_attr(not(#cond), inline(never))]
+            });
+            k += 2;
+        } else {
+            out.extend([attrs[k].clone()]);
+            k += 1;
+        }
+    }
+    out
 }
 
 /// The generic parameters at the start of `tokens` (`<const B: usize, …>`, without the
