@@ -572,6 +572,23 @@ mod tests {
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
         assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
         assert!(!batch.contains("Self::mul_add_lanes("));
+        // Its wrapper is inlined where the dispatch exists and kept out of line elsewhere
+        // (where it holds the whole body); a single-state function stays `#[inline]`.
+        let before = &std[..std
+            .find("pub fn inverse_dynamics_batch<")
+            .expect("a batch wrapper")];
+        let attrs: String = before[before.rfind("///").expect("its doc")..]
+            .split_whitespace()
+            .collect();
+        assert!(attrs.contains(
+            r#"#[cfg_attr(all(target_arch="x86_64",not(target_feature="avx512f")),inline)]#[cfg_attr(not(all(target_arch="x86_64",not(target_feature="avx512f"))),inline(never))]"#
+        ), "{attrs}");
+        let before = &std[..std.find("pub fn inverse_dynamics(").expect("a function")];
+        let attrs = &before[before.rfind("///").expect("its doc")..];
+        assert!(
+            attrs.contains("#[inline]\n") && !attrs.contains("never"),
+            "{attrs}"
+        );
         // A short body with several angles is dispatched (the UR5's gravity).
         assert!(std.contains("fn gravity_avx512("));
         // A batch function follows its single-state function: the pendulum's bodies are too
@@ -589,6 +606,12 @@ mod tests {
             assert!(!code.contains("has_avx512"), "{}", builder.options().no_std);
             assert!(!code.contains("target_feature(enable"));
             assert!(!code.contains("unsafe"));
+            // Not dispatched: the batch function holds its body and stays out of line.
+            let before = &code[..code
+                .find("pub fn inverse_dynamics_batch<")
+                .expect("a batch function")];
+            let attrs = &before[before.rfind("///").expect("its doc")..];
+            assert!(attrs.contains("#[inline(never)]") && !attrs.contains("cfg_attr"));
         }
     }
 }
