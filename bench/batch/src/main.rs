@@ -27,13 +27,7 @@ fn states<const N: usize, const B: usize>() -> Vec<(
     [SVector<f64, N>; B],
     [SVector<f64, N>; B],
 )> {
-    let mut s = 0x1234_5678u64;
-    let mut r = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut r = uniform();
     (0..1024 / B)
         .map(|_| {
             let mut q = [SVector::zeros(); B];
@@ -49,23 +43,7 @@ fn states<const N: usize, const B: usize>() -> Vec<(
         .collect()
 }
 
-/// Hands a result to `black_box`: by value (the default; the copy reads the returned value),
-/// or by reference with the `by-ref` feature (`BY_REF=1 bash bench/batch.sh`). The single
-/// calls' times depend on it (see bench/README.md). A macro, so that the value is not moved
-/// into a function first (which changed the single calls' times again).
-macro_rules! consume {
-    ($e:expr) => {{
-        #[cfg(not(feature = "by-ref"))]
-        black_box($e);
-        #[cfg(feature = "by-ref")]
-        black_box(&$e);
-    }};
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
-}
+include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../harness.rs"));
 
 /// ns per state of `single` and `batch` (each called with a round's index), interleaved.
 fn pair<const B: usize>(mut single: impl FnMut(usize), mut batch: impl FnMut(usize)) -> (f64, f64) {

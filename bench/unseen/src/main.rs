@@ -14,13 +14,7 @@ include!(concat!(
 ));
 
 fn states<const N: usize>() -> Vec<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>)> {
-    let mut s = 0x1234_5678u64;
-    let mut r = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut r = uniform();
     (0..1024)
         .map(|_| {
             (
@@ -32,21 +26,7 @@ fn states<const N: usize>() -> Vec<(SVector<f64, N>, SVector<f64, N>, SVector<f6
         .collect()
 }
 
-/// Hands a result to `black_box` by value (the default) or by reference (feature `by-ref`):
-/// a macro, so that the value is not moved into a function first.
-macro_rules! consume {
-    ($e:expr) => {{
-        #[cfg(not(feature = "by-ref"))]
-        black_box($e);
-        #[cfg(feature = "by-ref")]
-        black_box(&$e);
-    }};
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
-}
+include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../harness.rs"));
 
 fn time<F: FnMut(usize)>(mut f: F) -> f64 {
     let runs: Vec<f64> = (0..7)

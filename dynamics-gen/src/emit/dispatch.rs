@@ -56,7 +56,13 @@ use quote::{format_ident, quote};
 
 /// The `cfg` under which the dispatch exists.
 fn dispatch_cfg() -> TokenStream {
-    quote!(#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))])
+    let cond = dispatch_cond();
+    quote!(#[cfg(#cond)])
+}
+
+/// Its predicate: x86-64 code not already compiled for AVX-512.
+fn dispatch_cond() -> TokenStream {
+    quote!(all(target_arch = "x86_64", not(target_feature = "avx512f")))
 }
 
 /// What the rewritten bodies use, so that only those helpers are added.
@@ -319,7 +325,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
 /// the small wrapper, and it stays out of line elsewhere, where it holds the body.
 fn inline_when_dispatched(attrs: &[TokenTree]) -> TokenStream {
     let never = quote!(inline(never)).to_string();
-    let cond = quote!(all(target_arch = "x86_64", not(target_feature = "avx512f")));
+    let cond = dispatch_cond();
     let mut out = TokenStream::new();
     let mut k = 0;
     while k < attrs.len() {
