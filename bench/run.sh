@@ -123,6 +123,27 @@ if rows:
     print("\n".join(rows))
 EOF
 
+# 4b. The generic reference implementation (dynamics-reference: heap, loops over joints) against
+# the generated code, this run: criterion times both for inverse dynamics, the mass matrix and
+# forward dynamics.
+"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
+import json, os, sys
+crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
+def median(robot, name):
+    est = os.path.join(crit, robot, name, "new", "estimates.json")
+    if os.path.exists(est) and os.path.getmtime(est) >= start:
+        return json.load(open(est))["median"]["point_estimate"]
+rows = []
+for robot in robots:
+    for f in ["inverse_dynamics", "mass_matrix", "forward_dynamics"]:
+        ref, gen = median(robot, "reference_" + f), median(robot, "generated_" + f)
+        if ref and gen:
+            rows.append(f"{robot:<16} {f:<18} {ref:10.1f} {gen:9.1f} {ref / gen:6.1f}x")
+if rows:
+    print(f"\n{'robot':<16} {'function':<18} {'reference':>10} {'ours':>9} {'ratio':>7}")
+    print("\n".join(rows))
+EOF
+
 # 5. With CALLGRIND=1: instructions per call, both sides built for the default x86-64 target. Each
 # program runs at 1,024 and 2,048 calls; the difference of the counts over 1,024 is the cost of a
 # call, with start-up and set-up cancelled (every state is called once in the difference).
