@@ -6,6 +6,10 @@
 //! The `no_std` variants are left out: the `libm::sinf`/`libm::sin` they call for angles
 //! beyond the `joint_sin_cos` helper's range hold bounds checks in their argument reduction that the optimiser cannot prove unreachable, so `no_panic` rejects
 //! them although the generated code itself has none.
+//!
+//! The AVX-512 copies of the dispatched functions are `extern "C"` (a panic in one would
+//! abort, not unwind, which `#[no_panic]` cannot see): `avx512_copies_have_no_panic_path`
+//! reads this test binary's machine code instead and follows their calls.
 
 #![allow(missing_docs)]
 
@@ -355,5 +359,203 @@ mod release {
     #[test]
     fn generated_functions_have_no_panic_path() {
         dynamics_tests::with_std_cases!(call);
+    }
+
+    /// The AVX-512 copies of the dispatched functions (`emit/dispatch.rs`) are `extern "C"`:
+    /// a panic in one would abort instead of unwinding, so the `#[no_panic]` wrappers above,
+    /// which see unwinding only, pass whatever those copies hold. They are checked here on the
+    /// machine code instead: from every `*_avx512` function of the generated code in this test
+    /// binary, the direct calls and jumps into other functions are followed, transitively, and
+    /// none may reach the panic machinery.
+    #[cfg(target_arch = "x86_64")]
+    mod machine_code {
+        use iced_x86::{Decoder, DecoderOptions, Mnemonic, OpKind};
+        use object::{Object, ObjectSection, ObjectSymbol, ObjectSymbolTable, SymbolKind};
+        use std::collections::HashMap;
+
+        /// The functions of an executable, by address: `(start, end, demangled name)`.
+        struct Functions {
+            funcs: Vec<(u64, u64, String)>,
+            /// Sections' `(address, bytes)`.
+            code: Vec<(u64, Vec<u8>)>,
+            /// The functions that the dynamic relocations put into the slots of the global
+            /// offset table, by slot address (calls into a position-independent executable's
+            /// own standard library go through it).
+            got: HashMap<u64, u64>,
+        }
+
+        impl Functions {
+            fn of_this_test_binary() -> Functions {
+                let exe = std::env::current_exe().expect("the test binary's path");
+                let bytes = std::fs::read(&exe).expect("reads the test binary");
+                let file = object::File::parse(&*bytes).expect("parses the test binary");
+                let mut funcs: Vec<(u64, u64, String)> = file
+                    .symbols()
+                    .filter(|s| s.kind() == SymbolKind::Text && s.size() > 0)
+                    .filter_map(|s| {
+                        let name = rustc_demangle::demangle(s.name().ok()?);
+                        Some((s.address(), s.address() + s.size(), format!("{name:#}")))
+                    })
+                    .collect();
+                funcs.sort();
+                funcs.dedup_by_key(|f| f.0);
+                let code = file
+                    .sections()
+                    .filter(|s| s.kind() == object::SectionKind::Text)
+                    .filter_map(|s| Some((s.address(), s.data().ok()?.to_vec())))
+                    .collect();
+                let mut got = HashMap::new();
+                let dynsym = file.dynamic_symbol_table();
+                for (slot, r) in file.dynamic_relocations().into_iter().flatten() {
+                    let target = match r.target() {
+                        // An index into the dynamic symbol table.
+                        object::RelocationTarget::Symbol(i) => dynsym
+                            .as_ref()
+                            .and_then(|t| t.symbol_by_index(i).ok())
+                            .filter(|s| !s.is_undefined())
+                            .map(|s| s.address().wrapping_add(r.addend() as u64)),
+                        // R_X86_64_RELATIVE: the load address plus the addend.
+                        object::RelocationTarget::Absolute => Some(r.addend() as u64),
+                        _ => None,
+                    };
+                    if let Some(t) = target {
+                        got.insert(slot, t);
+                    }
+                }
+                Functions { funcs, code, got }
+            }
+
+            fn named(&self, pred: impl Fn(&str) -> bool) -> Vec<usize> {
+                (0..self.funcs.len())
+                    .filter(|&i| pred(&self.funcs[i].2))
+                    .collect()
+            }
+
+            fn containing(&self, addr: u64) -> Option<usize> {
+                match self.funcs.partition_point(|f| f.0 <= addr) {
+                    0 => None,
+                    i if addr < self.funcs[i - 1].1 => Some(i - 1),
+                    _ => None,
+                }
+            }
+
+            fn bytes(&self, f: usize) -> &[u8] {
+                let (start, end, _) = self.funcs[f];
+                self.code
+                    .iter()
+                    .find(|(a, d)| *a <= start && end <= a + d.len() as u64)
+                    .map(|(a, d)| &d[(start - a) as usize..(end - a) as usize])
+                    .unwrap_or(&[])
+            }
+
+            /// The first function of the panic machinery that `roots` reach through direct
+            /// calls and jumps, as the chain of names from a root to it.
+            fn panic_path(&self, roots: &[usize]) -> Option<Vec<&str>> {
+                let mut parent: Vec<Option<usize>> = vec![None; self.funcs.len()];
+                let mut seen = vec![false; self.funcs.len()];
+                let mut stack = roots.to_vec();
+                for &r in roots {
+                    seen[r] = true;
+                }
+                while let Some(f) = stack.pop() {
+                    if is_panic(&self.funcs[f].2) {
+                        let mut path = vec![self.funcs[f].2.as_str()];
+                        let mut at = f;
+                        while let Some(p) = parent[at] {
+                            path.push(self.funcs[p].2.as_str());
+                            at = p;
+                        }
+                        path.reverse();
+                        return Some(path);
+                    }
+                    let (start, end, _) = self.funcs[f];
+                    let decoder = Decoder::with_ip(64, self.bytes(f), start, DecoderOptions::NONE);
+                    for ins in decoder {
+                        // Direct calls, jumps and conditional jumps, and calls and jumps
+                        // through the global offset table.
+                        let target = if ins.op0_kind() == OpKind::NearBranch64 {
+                            ins.near_branch_target()
+                        } else if matches!(ins.mnemonic(), Mnemonic::Call | Mnemonic::Jmp)
+                            && ins.op0_kind() == OpKind::Memory
+                            && ins.is_ip_rel_memory_operand()
+                        {
+                            match self.got.get(&ins.ip_rel_memory_address()) {
+                                Some(&t) => t,
+                                None => continue,
+                            }
+                        } else {
+                            continue;
+                        };
+                        if (start..end).contains(&target) {
+                            continue;
+                        }
+                        // Targets outside this executable (the C library's `sincos`) are not
+                        // followed.
+                        if let Some(g) = self.containing(target) {
+                            if !seen[g] {
+                                seen[g] = true;
+                                parent[g] = Some(f);
+                                stack.push(g);
+                            }
+                        }
+                    }
+                }
+                None
+            }
+        }
+
+        /// Rust's panic entry points (`core::panicking::*`, `std::panicking::*`, the
+        /// `panic_cannot_unwind` of an `extern "C"` function's abort, the unwinder).
+        fn is_panic(name: &str) -> bool {
+            name.contains("panicking")
+                || name.contains("rust_begin_unwind")
+                || name.contains("rust_panic")
+                || name.contains("_Unwind_")
+        }
+
+        /// A function with a panic path (a bounds check on a run-time index): the check
+        /// must find it, or it proves nothing.
+        #[inline(never)]
+        fn panic_probe(v: &[f64; 4], i: usize) -> f64 {
+            v[i]
+        }
+
+        #[test]
+        fn avx512_copies_have_no_panic_path() {
+            let probe: fn(&[f64; 4], usize) -> f64 = std::hint::black_box(panic_probe);
+            assert_eq!(probe(&[1.0, 2.0, 3.0, 4.0], 2), 3.0);
+            let f = Functions::of_this_test_binary();
+            let probe = f.named(|n| n.ends_with("machine_code::panic_probe"));
+            assert_eq!(probe.len(), 1, "the probe function in the symbol table");
+            let path = f.panic_path(&probe);
+            assert!(
+                path.is_some(),
+                "the check does not see the probe's bounds-check panic"
+            );
+            // `has_avx512` is left out: it is the standard library's feature detection, whose
+            // first call reads the environment (`std_detect`'s cache), and `extern "C"`, so
+            // that its callers know it cannot unwind; the copies do not call it.
+            let copies = f.named(|n| {
+                n.contains("::generated::") && n.contains("_avx512") && !n.ends_with("has_avx512")
+            });
+            if cfg!(target_feature = "avx512f") {
+                // Compiled for AVX-512 (`-C target-cpu=native` on such a CPU): no dispatch,
+                // no copies; the wrappers above checked the only code there is.
+                assert!(copies.is_empty());
+                return;
+            }
+            // Every robot and function of the std cases has one (batch and derivatives too).
+            assert!(
+                copies.len() >= 100,
+                "only {} AVX-512 copies found in the test binary",
+                copies.len()
+            );
+            for &c in &copies {
+                if let Some(path) = f.panic_path(&[c]) {
+                    panic!("a panic path in an AVX-512 copy: {}", path.join(" -> "));
+                }
+            }
+            eprintln!("{} AVX-512 copies, no panic path", copies.len());
+        }
     }
 }

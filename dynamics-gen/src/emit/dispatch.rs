@@ -27,8 +27,9 @@
 //! it cannot unwind. `f_avx512` is `extern "C"` for the same reason: it is compiled where the
 //! generated file is (often another crate than the caller's), and a call to a Rust function
 //! there counts as one that may unwind to `no_panic` and to the optimiser; an `extern "C"`
-//! function cannot unwind (a panic in it would abort; the body is the one `no_panic` checks
-//! in the portable copy, which has no panic path). The `unsafe` call is sound because the callee needs exactly the features
+//! function cannot unwind (a panic in it would abort, which `#[no_panic]` cannot see, so the
+//! `no_panic` test also reads the copies' machine code and follows their calls: none reaches
+//! the panic machinery). The `unsafe` call is sound because the callee needs exactly the features
 //! just detected. Both carry `#[allow(unsafe_code)]`, so that a crate that denies unsafe code
 //! still compiles the generated file (a crate that forbids it cannot lift that: it generates
 //! with `--no-cpu-dispatch`). Where the crate is already compiled with AVX-512 (e.g. `-C target-cpu=native`
