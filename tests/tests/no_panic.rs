@@ -365,8 +365,8 @@ mod release {
     /// a panic in one would abort instead of unwinding, so the `#[no_panic]` wrappers above,
     /// which see unwinding only, pass whatever those copies hold. They are checked here on the
     /// machine code instead: from every `*_avx512` function of the generated code in this test
-    /// binary, the direct calls and jumps into other functions are followed, transitively, and
-    /// none may reach the panic machinery. (ELF only: Linux; elsewhere the wrappers above are
+    /// binary, the calls and jumps into other functions (direct, or through the global offset
+    /// table) are followed, transitively, and none may reach the panic machinery. (ELF only: Linux; elsewhere the wrappers above are
     /// the check.)
     #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
     mod machine_code {
@@ -449,8 +449,8 @@ mod release {
                     .unwrap_or(&[])
             }
 
-            /// The first function of the panic machinery that `roots` reach through direct
-            /// calls and jumps, as the chain of names from a root to it.
+            /// The first function of the panic machinery that `roots` reach through calls and
+            /// jumps, as the chain of names from a root to it.
             fn panic_path(&self, roots: &[usize]) -> Option<Vec<&str>> {
                 let mut parent: Vec<Option<usize>> = vec![None; self.funcs.len()];
                 let mut seen = vec![false; self.funcs.len()];
