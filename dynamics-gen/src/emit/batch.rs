@@ -112,6 +112,7 @@ pub fn batch_functions(
                 nalgebra,
                 self_ty: self_ty.as_ref(),
                 lanes,
+                ready: &[],
             }
             .tokens()
         };

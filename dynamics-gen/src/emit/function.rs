@@ -11,7 +11,7 @@
 
 use super::literal::float_tokens;
 use crate::expand::parameters::PARAM;
-use crate::expr::{ExprGraph, ExprId, Input, Node};
+use crate::expr::{reassociate, ExprGraph, ExprId, Input, Node};
 use crate::options::Scalar;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -97,6 +97,9 @@ pub struct FunctionBody<'a> {
     /// arguments arrays of `B` vectors and the result (an [`Output::Matrix`]) an array of `B`
     /// matrices; no fused multiply-adds (lanes have none) and never split.
     pub lanes: Option<&'a TokenStream>,
+    /// When each node of `graph` is ready ([`crate::expr::reassociate::ready_times`]): which
+    /// of two products an addition fuses. Empty until [`Self::tokens`] fills it.
+    pub ready: &'a [u32],
 }
 
 /// The most `let` statements in one block: longer bodies are split into blocks (see
@@ -350,8 +353,22 @@ enum Binding {
 }
 
 impl FunctionBody<'_> {
-    /// The body of the function, as a block's statements.
+    /// The body of the function, as a block's statements: its sums re-associated for
+    /// instruction-level parallelism first ([`crate::expr::reassociate`]).
     pub fn tokens(&self) -> TokenStream {
+        let (graph, outputs) = reassociate::reassociate(self.graph, self.outputs);
+        let ready = reassociate::ready_times(&graph);
+        FunctionBody {
+            graph: &graph,
+            outputs: &outputs,
+            ready: &ready,
+            ..*self
+        }
+        .tokens_as_given()
+    }
+
+    /// [`Self::tokens`] for the graph as it is.
+    fn tokens_as_given(&self) -> TokenStream {
         let g = self.graph;
         let live = g.live(self.outputs);
         let uses = g.use_counts(self.outputs);
@@ -827,6 +844,14 @@ impl FunctionBody<'_> {
         quote!(Self::mul_add(#x, #y, #c))
     }
 
+    /// When the operands of product `id` are ready (the node's own time for anything else).
+    fn ready(&self, id: ExprId) -> u32 {
+        match *self.graph.node(id) {
+            Node::Mul(a, b) => self.ready[a.index()].max(self.ready[b.index()]),
+            _ => self.ready[id.index()],
+        }
+    }
+
     /// For an inline product `(−c)·x` with a negative constant, the tokens of `c·x`.
     fn negated_product(&self, bind: &[Binding], id: ExprId) -> Option<TokenStream> {
         if !matches!(bind[id.index()], Binding::Inline) {
@@ -853,9 +878,19 @@ impl FunctionBody<'_> {
                 quote!(-#a)
             }
             Node::Add(a, b) if self.fused(bind, a) || self.fused(bind, b) => {
-                // A product operand fuses into a multiply-add (the product on the right first).
-                let (p, c) = if self.fused(bind, b) { (b, a) } else { (a, b) };
+                // A product operand fuses into a multiply-add: of two, the one whose operands
+                // are ready later (the other is computed meanwhile).
+                let fuse_a =
+                    self.fused(bind, a) && (!self.fused(bind, b) || self.ready(a) > self.ready(b));
+                let (p, c) = if fuse_a { (a, b) } else { (b, a) };
                 self.mul_add(bind, p, false, self.expr(bind, c))
+            }
+            Node::Sub(a, b)
+                if self.fused(bind, a) && self.fused(bind, b) && self.ready(a) > self.ready(b) =>
+            {
+                // `x·y − b = x·y + (−b)`, the later product fused.
+                let c = self.operand(bind, b, 4);
+                self.mul_add(bind, a, false, quote!(-#c))
             }
             Node::Sub(a, b) if self.fused(bind, b) => {
                 // `a − x·y = (−x)·y + a`.

@@ -699,6 +699,7 @@ fn body_tokens(
         nalgebra,
         self_ty: self_ty.as_ref(),
         lanes: None,
+        ready: &[],
     }
     .tokens()
 }

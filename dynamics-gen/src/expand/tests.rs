@@ -408,3 +408,56 @@ fn pruning_zeros_keeps_values_on_random_chains() {
     }
     println!("pruned vs unpruned: worst relative error {worst:e}; {pruned_ops} operations pruned");
 }
+
+/// The re-association the emitter applies ([`crate::expr::reassociate`]) keeps every
+/// function's values (to rounding) and operation counts, and shortens or keeps its critical
+/// path, on arms and a tree.
+#[test]
+fn reassociation_keeps_values_and_counts() {
+    use crate::expr::reassociate::{ready_times, reassociate};
+    use dynamics_model::random::Rng;
+    use dynamics_model::LoadOptions;
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/robots");
+    let mut rng = Rng::new(0x2EA5);
+    for file in ["ur5.urdf", "panda.urdf", "rand7.urdf", "trees/solo12.urdf"] {
+        let r = dynamics_model::load_file(&data.join(file), &LoadOptions::default()).expect(file);
+        let d = expand(&r);
+        let n = d.nv;
+        for (name, roots) in [
+            ("inverse_dynamics", &d.inverse_dynamics),
+            ("mass_matrix", &d.mass_matrix),
+            ("forward_dynamics", &d.forward_dynamics),
+            ("gravity", &d.gravity),
+        ] {
+            let (h, new_roots) = reassociate(&d.graph, roots);
+            let (before, after) = (d.graph.op_counts(roots), h.op_counts(&new_roots));
+            assert!(
+                after.mul <= before.mul && after.add_sub <= before.add_sub,
+                "{file} {name}: {before} -> {after}"
+            );
+            let critical = |g: &crate::expr::ExprGraph, roots: &[ExprId]| {
+                let t = ready_times(g);
+                roots.iter().map(|r| t[r.index()]).max().unwrap_or(0)
+            };
+            let (c0, c1) = (critical(&d.graph, roots), critical(&h, &new_roots));
+            assert!(c1 <= c0, "{file} {name}: critical path {c0} -> {c1}");
+            let mut worst = 0.0f64;
+            for _ in 0..5 {
+                let x: Vec<Vec<f64>> = (0..4)
+                    .map(|_| (0..n + 7).map(|_| rng.uniform(-2.0, 2.0)).collect())
+                    .collect();
+                let inputs = |i: Input| x[i.group as usize % 4][i.index as usize];
+                let want = d.graph.eval(roots, &inputs);
+                let got = h.eval(&new_roots, &inputs);
+                let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for (a, b) in got.iter().zip(&want) {
+                    worst = worst.max((a - b).abs() / scale);
+                }
+            }
+            assert!(worst <= 1e-12, "{file} {name}: {worst:e}");
+            println!(
+                "{file} {name}: critical path {c0} -> {c1} cycles, worst relative change {worst:e}"
+            );
+        }
+    }
+}

@@ -56,6 +56,7 @@ mod eval;
 mod graph;
 mod import;
 mod node;
+pub mod reassociate;
 pub mod sexp;
 mod simplify;
 mod stats;
