@@ -830,13 +830,23 @@ impl FunctionBody<'_> {
         let Node::Mul(x, y) = *self.graph.node(p) else {
             unreachable!("fused() admits products only")
         };
-        let x = if negate {
-            let x = self.operand(bind, x, 4);
-            quote!(-#x)
-        } else {
-            self.expr(bind, x)
+        let (x, y) = match self.late_factor(bind, x, y) {
+            Some((u, w)) => {
+                let x = self.operand(bind, x, 2);
+                let u = self.operand(bind, u, 3);
+                let xu = if negate {
+                    quote!(-(#x * #u))
+                } else {
+                    quote!(#x * #u)
+                };
+                (xu, self.expr(bind, w))
+            }
+            None if negate => {
+                let x = self.operand(bind, x, 4);
+                (quote!(-#x), self.expr(bind, y))
+            }
+            None => (self.expr(bind, x), self.expr(bind, y)),
         };
-        let y = self.expr(bind, y);
         if self.lanes.is_some() {
             let lanes = self.lanes_ty();
             return quote!(Self::mul_add_lanes(#lanes::from(#x), #lanes::from(#y), #lanes::from(#c)));
@@ -849,6 +859,26 @@ impl FunctionBody<'_> {
         match *self.graph.node(id) {
             Node::Mul(a, b) => self.ready[a.index()].max(self.ready[b.index()]),
             _ => self.ready[id.index()],
+        }
+    }
+
+    /// For the product `x·y` of a constant `x` and an inline product `y = u·w` whose factors
+    /// are ready at different times: `(u, w)` with `w` the later, so that the product is
+    /// written `(x·u)·w` and only one multiplication waits for `w`. (The graph keeps
+    /// constant factors outermost, `c·(u·w)`, its normal form.)
+    fn late_factor(&self, bind: &[Binding], x: ExprId, y: ExprId) -> Option<(ExprId, ExprId)> {
+        self.graph.as_const(x)?;
+        if !matches!(bind[y.index()], Binding::Inline) {
+            return None;
+        }
+        let Node::Mul(u, w) = *self.graph.node(y) else {
+            return None;
+        };
+        let (tu, tw) = (self.ready[u.index()], self.ready[w.index()]);
+        match tu.cmp(&tw) {
+            std::cmp::Ordering::Less => Some((u, w)),
+            std::cmp::Ordering::Greater => Some((w, u)),
+            std::cmp::Ordering::Equal => None,
         }
     }
 
@@ -920,6 +950,15 @@ impl FunctionBody<'_> {
                 quote!(#a - #b)
             }
             Node::Mul(a, b) => {
+                if let Some((u, w)) = self.late_factor(bind, a, b) {
+                    // `c·(u·w)` as `(c·u)·w`: one multiplication after the later factor.
+                    let (a, u, w) = (
+                        self.operand(bind, a, 2),
+                        self.operand(bind, u, 3),
+                        self.operand(bind, w, 3),
+                    );
+                    return quote!(#a * #u * #w);
+                }
                 let (a, b) = (self.operand(bind, a, 2), self.operand(bind, b, 3));
                 quote!(#a * #b)
             }
