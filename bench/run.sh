@@ -82,8 +82,10 @@ else
 fi
 # Absolute: cargo reads a relative one from where it runs (the workspace), but the benchmark
 # binary runs in its package's directory and criterion writes its results under it.
-mkdir -p "$ROOT/$CARGO_TARGET_DIR" 2>/dev/null || mkdir -p "$CARGO_TARGET_DIR"
-case $CARGO_TARGET_DIR in /*) ;; *) CARGO_TARGET_DIR=$(cd "$ROOT/$CARGO_TARGET_DIR" && pwd) ;; esac
+case $CARGO_TARGET_DIR in
+  /*) ;;
+  *) mkdir -p "$ROOT/$CARGO_TARGET_DIR" && CARGO_TARGET_DIR=$(cd "$ROOT/$CARGO_TARGET_DIR" && pwd) ;;
+esac
 export CARGO_TARGET_DIR
 echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', CARGO_TARGET_DIR=$CARGO_TARGET_DIR"
 (cd "$ROOT" && cargo bench -p dynamics-tests --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
