@@ -15,10 +15,26 @@
 //! the single-state ones do: there the lanes' multiply-adds are fused and the kernel's
 //! polynomials too, as in the single-state AVX-512 copy.
 //!
-//! A body larger than the splitting threshold of single-state functions (a large tree) is
-//! not unrolled `B` wide: the batch function then calls the single-state function per state.
+//! Where the lanes do not pay, the batch function calls the single-state function once per
+//! state instead, so that a batch never costs more per state than single calls: for a result
+//! of more than [`MAX_LANES_OUTPUTS`] entries (a tree's mass matrix), whose transpose out of
+//! the lanes costs more than the lanes gain, and for a body of more than [`MAX_LANES_OPS`]
+//! operations (a humanoid's inverse dynamics), whose `B`-wide values spill.
 
 use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
+
+/// The most entries of a vectorised batch function's result: up to 8 × 8 the runtime's
+/// `Lanes::scatter` is straight-line copies. Measured (`*_batch::<8>` against 8 single calls
+/// per state, default profile, AVX-512 copies; the transpose alone in ns per state):
+/// mass matrices of 6 × 6 and 7 × 7, 1.6–2.8× faster (transpose 5.0 and 6.7 ns); 12 × 12
+/// (Solo-12), 20 × 20 (Talos' upper body) and 29 × 29 (G1, fixed base), 0.54×, 0.74× and 0.50×
+/// (transpose 40, 90 and 206 ns).
+pub const MAX_LANES_OUTPUTS: usize = 64;
+
+/// The most operations of a vectorised batch body. Measured as above, inverse dynamics:
+/// Talos' upper body (2,432 operations) 1.47× with `B` = 8 and 1.19× with 4, G1 (3,381)
+/// 1.02× and 0.82×.
+pub const MAX_LANES_OPS: usize = 3000;
 use crate::expr::{ExprGraph, ExprId};
 use crate::options::Options;
 use proc_macro2::{Ident, Span, TokenStream};
@@ -116,7 +132,11 @@ pub fn batch_functions(
             }
             .tokens()
         };
-        let large = graph.live(f.outputs).iter().filter(|&&l| l).count() > MAX_UNSPLIT_LETS;
+        let ops = graph.op_counts(f.outputs).total();
+        let too_many_outputs = rows * f.cols > MAX_LANES_OUTPUTS;
+        let large = too_many_outputs
+            || ops > MAX_LANES_OPS
+            || graph.live(f.outputs).iter().filter(|&&l| l).count() > MAX_UNSPLIT_LETS;
         let (body, how, inline) = match runtime {
             Some(runtime) if !large => {
                 let body = body(Some(runtime));
@@ -154,10 +174,12 @@ pub fn batch_functions(
                     pattern = quote!((#pattern, #n));
                     states = quote!(#states.zip(#n.iter()));
                 }
-                let why = if runtime.is_some() {
-                    "its body is too large to unroll `B` wide"
+                let why = if runtime.is_none() {
+                    "it is generated without the runtime crate, whose `Lanes` type vectorised batches need".to_string()
+                } else if too_many_outputs {
+                    format!("its result has {} entries, and transposing that many out of `B`-wide lanes costs more than computing them lane-wise gains (more than {MAX_LANES_OUTPUTS} entries)", rows * f.cols)
                 } else {
-                    "it is generated without the runtime crate, whose `Lanes` type vectorised batches need"
+                    format!("its body ({ops} operations) is too large to unroll `B` wide without spilling (more than {MAX_LANES_OPS})")
                 };
                 (
                     quote! {
