@@ -16,12 +16,16 @@
 //! polynomials too, as in the single-state AVX-512 copy.
 //!
 //! Where the lanes do not pay, the batch function calls the single-state function once per
-//! state instead, so that a batch never costs more per state than single calls: for a result
-//! of more than [`MAX_LANES_OUTPUTS`] entries (a tree's mass matrix), whose transpose out of
-//! the lanes costs more than the lanes gain, and for a body of more than [`MAX_LANES_OPS`]
-//! operations (a humanoid's inverse dynamics), whose `B`-wide values spill.
+//! state instead: for a result of more than [`MAX_LANES_OUTPUTS`] entries (a tree's mass
+//! matrix), whose transpose out of the lanes costs more than the lanes gain, and for a body of
+//! more than [`MAX_LANES_OPS`] operations (a humanoid's inverse dynamics), whose `B`-wide
+//! values spill.
 
 use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
+use crate::expr::{ExprGraph, ExprId};
+use crate::options::Options;
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
 
 /// The most entries of a vectorised batch function's result: up to 8 × 8 the runtime's
 /// `Lanes::scatter` is straight-line copies. Measured (`*_batch::<8>` against 8 single calls
@@ -32,13 +36,9 @@ use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
 pub const MAX_LANES_OUTPUTS: usize = 64;
 
 /// The most operations of a vectorised batch body. Measured as above, inverse dynamics:
-/// Talos' upper body (2,432 operations) 1.47× with `B` = 8 and 1.19× with 4, G1 (3,381)
+/// Talos' upper body (2,451 operations) 1.47× with `B` = 8 and 1.19× with 4, G1 (3,409)
 /// 1.02× and 0.82×.
 pub const MAX_LANES_OPS: usize = 3000;
-use crate::expr::{ExprGraph, ExprId};
-use crate::options::Options;
-use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
 
 /// One batch function: its name, the single-state function it batches, its arguments, its
 /// outputs on `graph` and their columns (1: a vector).

@@ -50,8 +50,8 @@ pub mod latency {
     pub const TRIG: u32 = 50;
 }
 
-/// The time (cycles, [`latency`] model) at which each node of `g` is ready, every operation
-/// unfused.
+/// The time (cycles, [`latency`] model) at which each node of `g` is ready, a product that
+/// is an operand of a sum counted as fused into it.
 pub fn ready_times(g: &ExprGraph) -> Vec<u32> {
     let mut ready = Vec::with_capacity(g.len());
     for node in g.nodes() {
@@ -166,7 +166,6 @@ pub fn reassociate(g: &ExprGraph, roots: &[ExprId]) -> (ExprGraph, Vec<ExprId>) 
                         Node::Neg(a) if inner => stack.push((a, !neg)),
                         _ => {
                             let new = m(id);
-                            extend(&mut ready, &out);
                             let (product, time) = match *out.node(new) {
                                 Node::Mul(x, y) if uses[id.index()] == 1 => {
                                     (true, ready[x.index()].max(ready[y.index()]))
