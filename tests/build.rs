@@ -36,6 +36,11 @@ const PORTABLE: &[&str] = &[
     "random_104_f32",
 ];
 
+/// The dispatched cases whose AVX-512 and AVX2 copies are run side by side
+/// (`tests/dispatched_copies.rs`): each module gets `dispatched_copies_differ`, which may call
+/// the copies directly, as only code in the module can.
+const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_104_f32"];
+
 /// The cases generated a second time with run-time parameters, as modules `runtime_<case>`:
 /// a chain, a floating tree with its derivative functions, f32 `no_std`, and the
 /// Lagrangian route. Each is registered with the parameters' defaults (against the robot)
@@ -431,9 +436,14 @@ fn main() {
         } else {
             ", frames"
         };
+        let copies = if COPIES.contains(&case.module.as_str()) {
+            copies_helper(nq, nv, s)
+        } else {
+            String::new()
+        };
         writeln!(
             modules,
-            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); }}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
+            "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); {copies}}}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
             m = case.module
         )
         .ok();
@@ -550,4 +560,44 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("trig_kernels.rs"), kernels).expect("OUT_DIR is writable");
+}
+
+/// The source of `dispatched_copies_differ` for a [`COPIES`] module: the inverse dynamics,
+/// mass matrix, forward dynamics (with `a` as τ) and gravity of its AVX-512 and its AVX2 copy
+/// at one state, as (entries compared, entries whose bits differ); `None` unless the CPU has
+/// both instruction sets, or where the binary has no AVX2 copy.
+fn copies_helper(nq: usize, nv: usize, s: &str) -> String {
+    format!(
+        r#"
+/// Where this binary has both copies: the AVX-512 and the AVX2 copy at one state.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f"), not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(unsafe_code)]
+pub fn dispatched_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usize, usize)> {{
+    if !(Robot::has_avx512() && Robot::has_avx2()) {{
+        return None;
+    }}
+    let r = Robot::DEFAULT;
+    let (q, v, a) = (crate::to_s::<{s}, {nq}>(q), crate::to_s::<{s}, {nv}>(v), crate::to_s::<{s}, {nv}>(a));
+    let mut n = (0, 0);
+    let mut cmp = |x: &[{s}], y: &[{s}]| {{
+        for (x, y) in x.iter().zip(y) {{
+            n.0 += 1;
+            if x.to_bits() != y.to_bits() {{
+                n.1 += 1;
+            }}
+        }}
+    }};
+    // SAFETY: the CPU has the features both copies are compiled for (checked above).
+    unsafe {{
+        cmp(r.inverse_dynamics_avx512(&q, &v, &a).as_slice(), r.inverse_dynamics_avx2(&q, &v, &a).as_slice());
+        cmp(r.mass_matrix_avx512(&q).as_slice(), r.mass_matrix_avx2(&q).as_slice());
+        cmp(r.forward_dynamics_avx512(&q, &v, &a).as_slice(), r.forward_dynamics_avx2(&q, &v, &a).as_slice());
+        cmp(r.gravity_avx512(&q).as_slice(), r.gravity_avx2(&q).as_slice());
+    }}
+    Some(n)
+}}
+/// `(nq, nv)` of this robot, for `dispatched_copies_differ`'s arguments.
+pub const COPIES_DIMS: (usize, usize) = ({nq}, {nv});
+"#
+    )
 }

@@ -71,8 +71,8 @@ pub struct Options {
     /// `runtime_parameters`.
     pub payload_link: Option<String>,
     /// Run-time CPU dispatch ([`crate::emit::dispatch`], default `true`): in `std` code on
-    /// x86-64, each numeric function gets a second copy compiled for AVX-512, called when the
-    /// CPU has it. `false`: one copy, no `unsafe`, the same results on every x86-64 CPU.
+    /// x86-64, each numeric function gets copies compiled for AVX-512 and for AVX2 with FMA,
+    /// called when the CPU has them. `false`: one copy, no `unsafe`, the same results on every x86-64 CPU.
     pub cpu_dispatch: bool,
 }
 

@@ -7,9 +7,10 @@
 //! beyond the `joint_sin_cos` helper's range hold bounds checks in their argument reduction that the optimiser cannot prove unreachable, so `no_panic` rejects
 //! them although the generated code itself has none.
 //!
-//! The AVX-512 copies of the dispatched functions are `extern "C"` (a panic in one would
-//! abort, not unwind, which `#[no_panic]` cannot see): `avx512_copies_have_no_panic_path`
-//! reads this test binary's machine code instead and follows their calls.
+//! The AVX-512 and AVX2 copies of the dispatched functions are `extern "C"` (a panic in one
+//! would abort, not unwind, which `#[no_panic]` cannot see):
+//! `dispatched_copies_have_no_panic_path` reads this test binary's machine code instead and
+//! follows their calls.
 
 #![allow(missing_docs)]
 
@@ -361,11 +362,11 @@ mod release {
         dynamics_tests::with_std_cases!(call);
     }
 
-    /// The AVX-512 copies of the dispatched functions (`emit/dispatch.rs`) are `extern "C"`:
-    /// a panic in one would abort instead of unwinding, so the `#[no_panic]` wrappers above,
-    /// which see unwinding only, pass whatever those copies hold. They are checked here on the
-    /// machine code instead: from every `*_avx512` function of the generated code in this test
-    /// binary, the calls and jumps into other functions (direct, or through the global offset
+    /// The AVX-512 and AVX2 copies of the dispatched functions (`emit/dispatch.rs`) are
+    /// `extern "C"`: a panic in one would abort instead of unwinding, so the `#[no_panic]`
+    /// wrappers above, which see unwinding only, pass whatever those copies hold. They are
+    /// checked here on the machine code instead: from every `*_avx512` and `*_avx2` function
+    /// of the generated code in this test binary, the calls and jumps into other functions (direct, or through the global offset
     /// table) are followed, transitively, and none may reach the panic machinery. (ELF only: Linux; elsewhere the wrappers above are
     /// the check.)
     #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
@@ -522,7 +523,7 @@ mod release {
         }
 
         #[test]
-        fn avx512_copies_have_no_panic_path() {
+        fn dispatched_copies_have_no_panic_path() {
             let probe: fn(&[f64; 4], usize) -> f64 = std::hint::black_box(panic_probe);
             assert_eq!(probe(&[1.0, 2.0, 3.0, 4.0], 2), 3.0);
             let f = Functions::of_this_test_binary();
@@ -533,11 +534,15 @@ mod release {
                 path.is_some(),
                 "the check does not see the probe's bounds-check panic"
             );
-            // `has_avx512` is left out: it is the standard library's feature detection, whose
-            // first call reads the environment (`std_detect`'s cache), and `extern "C"`, so
-            // that its callers know it cannot unwind; the copies do not call it.
+            // `has_avx512` and `has_avx2` are left out: they are the standard library's feature
+            // detection, whose first call reads the environment (`std_detect`'s cache), and
+            // `extern "C"`, so that their callers know they cannot unwind; the copies do not
+            // call them.
             let copies = f.named(|n| {
-                n.contains("::generated::") && n.contains("_avx512") && !n.ends_with("has_avx512")
+                n.contains("::generated::")
+                    && (n.contains("_avx512") || n.contains("_avx2"))
+                    && !n.ends_with("has_avx512")
+                    && !n.ends_with("has_avx2")
             });
             if cfg!(target_feature = "avx512f") {
                 // Compiled for AVX-512 (`-C target-cpu=native` on such a CPU): no dispatch,
@@ -545,18 +550,32 @@ mod release {
                 assert!(copies.is_empty());
                 return;
             }
-            // Every robot and function of the std cases has one (batch and derivatives too).
+            // Every robot and function of the std cases has two (batch and derivatives too):
+            // the AVX-512 copy and, unless the binary is compiled with AVX2 and FMA, the AVX2 one.
+            let avx2 = copies
+                .iter()
+                .filter(|&&c| f.funcs[c].2.contains("_avx2"))
+                .count();
             assert!(
-                copies.len() >= 100,
+                copies.len() - avx2 >= 100,
                 "only {} AVX-512 copies found in the test binary",
-                copies.len()
+                copies.len() - avx2
             );
+            if !cfg!(all(target_feature = "avx2", target_feature = "fma")) {
+                assert!(
+                    avx2 >= 100,
+                    "only {avx2} AVX2 copies found in the test binary"
+                );
+            }
             for &c in &copies {
                 if let Some(path) = f.panic_path(&[c]) {
-                    panic!("a panic path in an AVX-512 copy: {}", path.join(" -> "));
+                    panic!("a panic path in a dispatched copy: {}", path.join(" -> "));
                 }
             }
-            eprintln!("{} AVX-512 copies, no panic path", copies.len());
+            eprintln!(
+                "{} AVX-512 and {avx2} AVX2 copies, no panic path",
+                copies.len() - avx2
+            );
         }
     }
 }

@@ -11,9 +11,9 @@
 //! joints' sines and cosines come from the single-state kernel's loop (`sin_cos_into`) run
 //! once over all `K·B` angles (`joint_sin_cos_rows`), inlined into the body.
 //!
-//! Under run-time CPU dispatch ([`super::dispatch`]) a batch function gets its AVX-512 copy as
-//! the single-state ones do: there the lanes' multiply-adds are fused and the kernel's
-//! polynomials too, as in the single-state AVX-512 copy.
+//! Under run-time CPU dispatch ([`super::dispatch`]) a batch function gets its AVX-512 and AVX2
+//! copies as the single-state ones do: there the lanes' multiply-adds are fused and the
+//! kernel's polynomials too, as in the single-state copies.
 //!
 //! Where the lanes do not pay, the batch function calls the single-state function once per
 //! state instead: for a result of more than [`MAX_LANES_OUTPUTS`] entries (a tree's mass
@@ -151,7 +151,7 @@ pub fn batch_functions(
                 let wide = if options.no_std || !options.cpu_dispatch {
                     "where the target's vectors are wide (`-C target-cpu=native`)".to_string()
                 } else {
-                    format!("where the CPU's vectors are wide (on x86-64 with AVX-512 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
+                    format!("where the CPU's vectors are wide (on x86-64 with AVX-512 or AVX2 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
                 };
                 let how = format!(
                     " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}). Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
@@ -233,8 +233,8 @@ fn lanes_helpers(
                 Self::mul_add_lanes_with::<B, false>(a, b, c)
             }
 
-            /// [`Self::mul_add_lanes`], fused also when `F` (the AVX-512 copy of a dispatched
-            /// batch function).
+            /// [`Self::mul_add_lanes`], fused also when `F` (the AVX-512 and AVX2 copies of a
+            /// dispatched batch function).
             #[inline(always)]
             fn mul_add_lanes_with<const B: usize, const F: bool>(
                 a: #lanes,

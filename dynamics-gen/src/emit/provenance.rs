@@ -133,7 +133,9 @@ fn describe(generated: &Generated, options: &Options) -> String {
         format!("scalar {}", options.scalar.as_str()),
         match (options.no_std, options.cpu_dispatch) {
             (true, _) => "no_std (libm)".to_string(),
-            (false, true) => "std, AVX-512 copies chosen at run time on x86-64".to_string(),
+            (false, true) => {
+                "std, AVX-512 and AVX2 copies chosen at run time on x86-64".to_string()
+            }
             (false, false) => "std, no CPU dispatch".to_string(),
         },
         if robot.runtime.gravity {

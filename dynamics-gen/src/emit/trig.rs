@@ -133,8 +133,8 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
             .expect("polynomials have coefficients")
     };
     let (sin_poly, cos_poly) = (estrin(&sin_c), estrin(&cos_c));
-    // `a·b + c`: one rounding where the code is compiled with FMA (or in the AVX-512 copy of a
-    // dispatched function, `F`), two otherwise; `core` has no `mul_add`.
+    // `a·b + c`: one rounding where the code is compiled with FMA (or in the AVX-512 and AVX2
+    // copies of a dispatched function, `F`), two otherwise; `core` has no `mul_add`.
     let fma = if no_std {
         quote!(let fma = |a: #t, b: #t, c: #t| a * b + c;)
     } else {

@@ -161,7 +161,7 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, Generation), syn::E
                         }
                         Some(_) => errors.at(
                             &e.tokens,
-                            "`cpu_dispatch` is `true` (the default: on x86-64 a copy of each function compiled for AVX-512, chosen at run time) or `false` (one copy, no `unsafe`)",
+                            "`cpu_dispatch` is `true` (the default: on x86-64 copies of each function compiled for AVX-512 and for AVX2, chosen at run time) or `false` (one copy, no `unsafe`)",
                         ),
                         None => {}
                     }

@@ -67,8 +67,8 @@
 //! pub struct Ur5;
 //! ```
 //!
-//! Options: `scalar = "f32"`, `no_std`, `no_cpu_dispatch` (no AVX-512 copy chosen at run
-//! time; see [`crate::emit::dispatch`]), `nalgebra = path::to::nalgebra`,
+//! Options: `scalar = "f32"`, `no_std`, `no_cpu_dispatch` (no AVX-512 or AVX2 copies chosen
+//! at run time; see [`crate::emit::dispatch`]), `nalgebra = path::to::nalgebra`,
 //! `gravity = [gx, gy, gz]`, `floating_base` (a free 6-DoF joint between the world and the
 //! base), `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
 //! and for URDF `tip = "LINK"` (the end effector of `end_effector_pose` and the Jacobians),

@@ -210,10 +210,10 @@ pub struct GenerateArgs {
     /// effector's link).
     #[arg(long, value_name = "LINK", requires = "runtime_parameters")]
     pub payload_link: Option<String>,
-    /// No run-time CPU dispatch: by default std code on x86-64 also holds a copy of each
-    /// numeric function compiled for AVX-512, called when the CPU has it (results can then
-    /// differ by the rounding of fused multiply-adds); with this flag, one copy, no `unsafe`,
-    /// the same bits on every x86-64 CPU.
+    /// No run-time CPU dispatch: by default std code on x86-64 also holds copies of each
+    /// numeric function compiled for AVX-512 and for AVX2 with FMA, called when the CPU has
+    /// them (results can then differ by the rounding of fused multiply-adds); with this flag,
+    /// one copy, no `unsafe`, the same bits on every x86-64 CPU.
     #[arg(long)]
     pub no_cpu_dispatch: bool,
     /// Write the code to FILE instead of standard output.
