@@ -55,8 +55,9 @@
 //! in one binary, medians of 9 interleaved rounds of 20,000 calls (2026-11-26): the Panda's
 //! inverse dynamics −32 %, mass matrix −23 %, forward dynamics −25 %, gravity −45 %; rand7's
 //! −27 %, −42 %, −74 % (its portable forward dynamics took 725 ns in that build, 233 ns in
-//! another) and −41 %. An earlier measurement of the same scheme on the Panda, before the
-//! sine–cosine kernel's padding and Estrin schedule, had found nothing (−4 % to +15 %).
+//! another) and −41 %. An earlier measurement of the same scheme on the Panda, which predates
+//! the sine–cosine kernel's padding and Estrin schedule, had found nothing (−4 % to +15 %);
+//! why was not re-examined.
 //!
 //! A function with `const` generic parameters (the batch functions, `f<const B: usize>`) passes
 //! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
