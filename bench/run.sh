@@ -132,8 +132,9 @@ if rows:
 EOF
 
 # 4b. The generic reference implementation (dynamics-reference: heap, loops over joints) against
-# the generated code, this run: criterion times both for inverse dynamics, the mass matrix and
-# forward dynamics.
+# the generated code, this run: every function criterion timed on both sides (on the arms, all
+# that have a counterpart: `bench_every!` in tests/benches/dynamics.rs; the derivatives' reference
+# is central differences of the reference, as the tests compare them).
 "$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
 import json, os, sys
 crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
@@ -143,12 +144,14 @@ def median(robot, name):
         return json.load(open(est))["median"]["point_estimate"]
 rows = []
 for robot in robots:
-    for f in ["inverse_dynamics", "mass_matrix", "forward_dynamics"]:
+    d = os.path.join(crit, robot)
+    names = sorted(n[len("reference_"):] for n in os.listdir(d) if n.startswith("reference_")) if os.path.isdir(d) else []
+    for f in names:
         ref, gen = median(robot, "reference_" + f), median(robot, "generated_" + f)
         if ref and gen:
-            rows.append(f"{robot:<16} {f:<18} {ref:10.1f} {gen:9.1f} {ref / gen:6.1f}x")
+            rows.append(f"{robot:<16} {f:<34} {ref:10.1f} {gen:9.1f} {ref / gen:6.1f}x")
 if rows:
-    print(f"\n{'robot':<16} {'function':<18} {'reference':>10} {'ours':>9} {'ratio':>7}")
+    print(f"\n{'robot':<16} {'function':<34} {'reference':>10} {'ours':>9} {'ratio':>7}")
     print("\n".join(rows))
 EOF
 

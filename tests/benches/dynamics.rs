@@ -8,7 +8,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_model::LoadOptions;
 use dynamics_tests::bench::{states, STATES};
-use nalgebra::{SVector, Vector6};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector6};
 use std::hint::black_box;
 
 /// Times `f` on the states in turn, one per iteration (each through `black_box`).
@@ -59,9 +59,23 @@ macro_rules! bench_robot {
         group.bench_function("generated/gravity", |b| {
             cycled(b, &states, |s| Gen.gravity(black_box(&s.q)))
         });
+        group.bench_function("reference/gravity", |b| {
+            cycled(b, &states, |s| {
+                dynamics_reference::gravity_forces(&robot, black_box(s.q.as_slice()), &g)
+            })
+        });
         group.bench_function("generated/coriolis", |b| {
             cycled(b, &states, |s| {
                 Gen.coriolis(black_box(&s.q), black_box(&s.qd))
+            })
+        });
+        group.bench_function("reference/coriolis", |b| {
+            cycled(b, &states, |s| {
+                dynamics_reference::vel_quadratic_forces(
+                    &robot,
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                )
             })
         });
         // One call for M and h = c + g, against two (M, then h as τ at q̈ = 0).
@@ -164,6 +178,276 @@ macro_rules! bench_derivatives {
     }};
 }
 
+/// Central differences of `f` along the unit vectors of `x` (h = 1e-6), as
+/// `tests/generated_derivatives.rs` differentiates the reference (on a fixed base the tangent
+/// directions of q are its unit vectors).
+fn central(x: &[f64], f: impl Fn(&[f64]) -> DVector<f64>) -> DMatrix<f64> {
+    let h = 1e-6;
+    let mut m = DMatrix::zeros(x.len(), x.len());
+    for j in 0..x.len() {
+        let (mut plus, mut minus) = (x.to_vec(), x.to_vec());
+        plus[j] += h;
+        minus[j] -= h;
+        m.set_column(j, &((f(&plus) - f(&minus)) / (2.0 * h)));
+    }
+    m
+}
+
+/// Every other public function of a fixed-base arm's generated code that has a counterpart in
+/// the reference implementation, against it (the rows `bench_robot!` and `bench_derivatives!`
+/// already time on the generated side get only their reference row here). The derivative
+/// functions have no analytic counterpart in the reference: theirs is what the tests compare
+/// them with, central differences of the reference (`2n` calls per Jacobian), with `M⁻¹`
+/// from the reference's `M` by Cholesky.
+macro_rules! bench_every {
+    ($c:expr, $label:literal, $m:ident, $n:literal, $robot:expr) => {{
+        use dynamics_tests::generated::$m::Robot as Gen;
+        let robot = $robot;
+        let states = states::<$n, $n>(|q, qd, qdd| Gen.inverse_dynamics(q, qd, qdd));
+        let g = robot.gravity;
+        let z = Vector6::zeros();
+        let f_tip = Vector6::new(0.3, -0.2, 0.5, 4.0, -3.0, 6.0);
+        // Two constraint rows on the joints, and their bias.
+        let a =
+            SMatrix::<f64, 2, $n>::from_fn(|i, j| if i == j { 1.0 } else { 0.1 * (i + j) as f64 });
+        let a_dot_qd = SVector::<f64, 2>::new(0.2, -0.1);
+        let (a_dyn, a_dot_qd_dyn) = (
+            DMatrix::from_column_slice(2, $n, a.as_slice()),
+            DVector::from_column_slice(a_dot_qd.as_slice()),
+        );
+        let id = |q: &[f64], qd: &[f64], qdd: &[f64]| {
+            dynamics_reference::inverse_dynamics(&robot, q, qd, qdd, &g, &z)
+        };
+        let fd = |q: &[f64], qd: &[f64], tau: &[f64]| {
+            dynamics_reference::forward_dynamics(&robot, q, qd, tau, &g, &z).expect("M > 0")
+        };
+        let minv = |q: &[f64]| {
+            dynamics_reference::mass_matrix(&robot, q)
+                .cholesky()
+                .expect("M > 0")
+                .inverse()
+        };
+        let mut group = $c.benchmark_group($label);
+        macro_rules! pair {
+            ($name:literal, |$s:ident| $gen:expr, $reference:expr) => {
+                group.bench_function(concat!("generated/", $name), |b| {
+                    cycled(b, &states, |$s| $gen)
+                });
+                pair!($name, |$s| $reference);
+            };
+            ($name:literal, |$s:ident| $reference:expr) => {
+                group.bench_function(concat!("reference/", $name), |b| {
+                    cycled(b, &states, |$s| $reference)
+                });
+            };
+        }
+        pair!(
+            "kinetic_energy",
+            |s| Gen.kinetic_energy(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::kinetic_energy(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice())
+            )
+        );
+        pair!(
+            "potential_energy",
+            |s| Gen.potential_energy(black_box(&s.q)),
+            dynamics_reference::potential_energy(&robot, black_box(s.q.as_slice()), &g)
+        );
+        pair!(
+            "mass_matrix_dot",
+            |s| Gen.mass_matrix_dot(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::mass_matrix_dot(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice())
+            )
+        );
+        pair!(
+            "coriolis_matrix",
+            |s| Gen.coriolis_matrix(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::coriolis_matrix(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice())
+            )
+        );
+        pair!(
+            "friction",
+            |s| Gen.friction(black_box(&s.qd)),
+            dynamics_reference::friction_forces(&robot, black_box(s.qd.as_slice()), None)
+        );
+        pair!(
+            "end_effector_pose",
+            |s| Gen.end_effector_pose(black_box(&s.q)),
+            dynamics_reference::end_effector_pose(&robot, black_box(s.q.as_slice()))
+        );
+        pair!(
+            "jacobian_space",
+            |s| Gen.jacobian_space(black_box(&s.q)),
+            dynamics_reference::jacobian_space(&robot, black_box(s.q.as_slice()))
+        );
+        pair!(
+            "jacobian_body",
+            |s| Gen.jacobian_body(black_box(&s.q)),
+            dynamics_reference::jacobian_body(&robot, black_box(s.q.as_slice()))
+        );
+        pair!(
+            "jacobian_space_dot",
+            |s| Gen.jacobian_space_dot(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::jacobian_space_dot(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice())
+            )
+        );
+        pair!(
+            "jacobian_body_dot",
+            |s| Gen.jacobian_body_dot(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::jacobian_body_dot(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice())
+            )
+        );
+        pair!(
+            "end_effector_forces",
+            |s| Gen.end_effector_forces(black_box(&s.q), black_box(&f_tip)),
+            dynamics_reference::end_effector_forces(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(&f_tip)
+            )
+        );
+        pair!(
+            "inverse_dynamics_with_tip",
+            |s| Gen.inverse_dynamics_with_tip(
+                black_box(&s.q),
+                black_box(&s.qd),
+                black_box(&s.qdd),
+                black_box(&f_tip)
+            ),
+            dynamics_reference::inverse_dynamics(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.qdd.as_slice()),
+                &g,
+                black_box(&f_tip)
+            )
+        );
+        pair!(
+            "forward_dynamics_with_tip",
+            |s| Gen.forward_dynamics_with_tip(
+                black_box(&s.q),
+                black_box(&s.qd),
+                black_box(&s.tau),
+                black_box(&f_tip)
+            ),
+            dynamics_reference::forward_dynamics(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.tau.as_slice()),
+                &g,
+                black_box(&f_tip)
+            )
+        );
+        pair!(
+            "task_space_mass_matrix",
+            |s| Gen.task_space_mass_matrix(black_box(&s.q)),
+            dynamics_reference::task_space_mass_matrix(&robot, black_box(s.q.as_slice()))
+        );
+        pair!(
+            "task_space_bias",
+            |s| Gen.task_space_bias(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::task_space_bias(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                &g
+            )
+        );
+        pair!(
+            "constrained_forward_dynamics",
+            |s| Gen.constrained_forward_dynamics(
+                black_box(&s.q),
+                black_box(&s.qd),
+                black_box(&s.tau),
+                black_box(&a),
+                black_box(&a_dot_qd)
+            ),
+            dynamics_reference::constrained_forward_dynamics(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.tau.as_slice()),
+                black_box(&a_dyn),
+                black_box(&a_dot_qd_dyn),
+                &g
+            )
+        );
+        pair!("mass_matrix_and_bias", |s| {
+            let (q, qd) = (black_box(s.q.as_slice()), black_box(s.qd.as_slice()));
+            (
+                dynamics_reference::mass_matrix(&robot, q),
+                id(q, qd, &[0.0; $n]),
+            )
+        });
+        pair!("mass_matrix_inverse", |s| minv(black_box(s.q.as_slice())));
+        pair!("gravity_derivative", |s| {
+            central(black_box(s.q.as_slice()), |q| {
+                dynamics_reference::gravity_forces(&robot, q, &g)
+            })
+        });
+        let d_id = |q: &[f64], qd: &[f64], qdd: &[f64]| {
+            (
+                central(q, |q| id(q, qd, qdd)),
+                central(qd, |qd| id(q, qd, qdd)),
+            )
+        };
+        let d_fd = |q: &[f64], qd: &[f64], tau: &[f64]| {
+            (
+                central(q, |q| fd(q, qd, tau)),
+                central(qd, |qd| fd(q, qd, tau)),
+                minv(q),
+            )
+        };
+        pair!("inverse_dynamics_derivatives", |s| {
+            d_id(
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.qdd.as_slice()),
+            )
+        });
+        pair!("inverse_dynamics_with_derivatives", |s| {
+            let (q, qd, qdd) = (
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.qdd.as_slice()),
+            );
+            (id(q, qd, qdd), d_id(q, qd, qdd))
+        });
+        pair!("forward_dynamics_derivatives", |s| {
+            d_fd(
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.tau.as_slice()),
+            )
+        });
+        pair!("forward_dynamics_with_derivatives", |s| {
+            let (q, qd, tau) = (
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.tau.as_slice()),
+            );
+            (fd(q, qd, tau), d_fd(q, qd, tau))
+        });
+        group.finish();
+    }};
+}
+
 /// The batch functions on 8 states against 8 single-state calls on the same states: both
 /// rows time 8 states, so their ratio is the batch's gain per state.
 macro_rules! bench_batch {
@@ -246,6 +530,9 @@ fn benches(c: &mut Criterion) {
         load("panda", "panda_hand_tcp")
     );
     bench_robot!(c, "rand7", urdf_rand7, 7, 7, load("rand7", "ee_link"));
+    bench_every!(c, "ur5", urdf_ur5, 6, load("ur5", "tool0"));
+    bench_every!(c, "panda", urdf_panda, 7, load("panda", "panda_hand_tcp"));
+    bench_every!(c, "rand7", urdf_rand7, 7, load("rand7", "ee_link"));
     bench_batch!(c, "ur5", urdf_ur5, 6, 6);
     bench_batch!(c, "panda", urdf_panda, 7, 7);
     bench_batch!(c, "rand7", urdf_rand7, 7, 7);
