@@ -4,8 +4,13 @@
 //! A crate built for the default x86-64 target (no `-C target-cpu`) may use only SSE2: 16 vector
 //! registers of two `f64`s, no fused multiply-add. The unrolled dynamics keep dozens of values
 //! live at once, so on SSE2 they spill to the stack, and the joints' sines and cosines take
-//! two lanes at a time. So, for `std` code, every public `&self` function whose body does
-//! arithmetic (it calls `Self::mul_add` or `Self::joint_sin_cos`) becomes four:
+//! two lanes at a time. So, for `std` code, every `&self` function whose body does
+//! arithmetic (it calls `Self::mul_add` or `Self::joint_sin_cos`) becomes four: every public
+//! one, and the private helpers without generic parameters (`mass_matrix_factor`, which
+//! `constrained_forward_dynamics` calls: left to the portable code, that function took 392 ns
+//! for rand7 against 171 ns for its forward dynamics, and an identical copy of it 187 or 641 ns
+//! for the Panda depending on where the optimiser inlined it). The wrapper keeps the
+//! function's visibility:
 //!
 //! ```text
 //! #[inline] pub fn f(&self, args) -> R {             // the public API, unchanged
@@ -242,8 +247,10 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
 
 /// What [`dispatched`] needs of an eligible function.
 struct Signature {
-    /// The index of `pub` in the item.
+    /// The index of `pub` (of `fn` for a private function) in the item.
     p: usize,
+    /// Whether the function is `pub` (its wrapper is too).
+    public: bool,
     name: Ident,
     /// The generic parameters without the brackets, and their names (`const` ones only).
     generics: TokenStream,
@@ -258,16 +265,26 @@ struct Signature {
 /// eligible, otherwise `None`.
 fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
     let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
-    let p = item.iter().position(|t| is_ident(t, "pub"))?;
-    if !is_ident(item.get(p + 1)?, "fn") {
-        return None; // `pub const`, `pub const fn`, `pub unsafe fn`, …
+    // `pub fn`, or a private `fn` (a helper such as `mass_matrix_factor`, which a public
+    // function without arithmetic of its own calls): not `pub const fn`, `unsafe fn`,
+    // `extern "C" fn`, `pub(crate) fn`, …
+    let f = item.iter().position(|t| is_ident(t, "fn"))?;
+    let public = f > 0 && is_ident(&item[f - 1], "pub");
+    let p = if public { f - 1 } else { f };
+    let plain_start = p == 0
+        || matches!(&item[p - 1], TokenTree::Group(g) if g.delimiter() == Delimiter::Bracket);
+    if !plain_start {
+        return None;
     }
-    let TokenTree::Ident(name) = item.get(p + 2)? else {
+    let TokenTree::Ident(name) = item.get(f + 1)? else {
         return None;
     };
-    // `<const B: usize, …>`: const parameters only, passed on by name.
-    let (generics, generic_names, after) = const_generics(&item[p + 3..])?;
-    let after = p + 3 + after;
+    // `<const B: usize, …>`: const parameters only, passed on by name; none on a private one.
+    let (generics, generic_names, after) = const_generics(&item[f + 2..])?;
+    if !public && !generic_names.is_empty() {
+        return None;
+    }
+    let after = f + 2 + after;
     let TokenTree::Group(args) = item.get(after)? else {
         return None;
     };
@@ -288,6 +305,7 @@ fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
     }
     Some(Signature {
         p,
+        public,
         name: name.clone(),
         generics,
         generic_names,
@@ -302,6 +320,7 @@ fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStream {
     let Signature {
         p,
+        public,
         name,
         generics,
         generic_names,
@@ -341,10 +360,11 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
     } else {
         quote!(, #generics)
     };
+    let vis = public.then(|| quote!(pub));
     quote! {
         #attrs
         #[allow(unsafe_code)]
-        pub fn #name #fast_generics (#args) #ret {
+        #vis fn #name #fast_generics (#args) #ret {
             #cfg
             {
                 if Self::has_avx512() {
@@ -673,6 +693,14 @@ mod tests {
         );
         // A short body with several angles is dispatched (the UR5's gravity).
         assert!(std.contains("fn gravity_avx512("));
+        // So is a private helper, and its wrapper stays private: `mass_matrix_factor`, which
+        // `constrained_forward_dynamics` calls. The generic private helpers are left alone.
+        assert!(std.contains("\n    fn mass_matrix_factor(\n"));
+        assert!(std.contains("fn mass_matrix_factor_avx512("));
+        assert!(std.contains("fn mass_matrix_factor_avx2("));
+        assert!(!std.contains("pub fn mass_matrix_factor"));
+        assert!(!std.contains("joint_sin_cos_avx512"));
+        assert!(!std.contains("fn isometry_avx512"));
         // A batch function follows its single-state function: the pendulum's bodies are too
         // small to dispatch, and so are its batch functions, whatever their size.
         let pendulum = crate::Builder::new("pendulum")
