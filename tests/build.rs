@@ -41,6 +41,17 @@ const PORTABLE: &[&str] = &[
 /// the copies directly, as only code in the module can.
 const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_104_f32"];
 
+/// The cases generated with the `*_from_sin_cos` variants (`sin_cos_variants: true`), each
+/// with `sin_cos_variants_differ` (`tests/sin_cos_variants.rs`): a chain with its derivative
+/// functions, a floating tree, f32 `no_std`, and mimic joints (whose angles with a
+/// multiplier or an offset the variants still compute from `q`).
+const SIN_COS: &[&str] = &[
+    "urdf_panda",
+    "tree_solo12",
+    "shipped_ur5_f32_no_std",
+    "mimic_301_f64",
+];
+
 /// The cases generated a second time with run-time parameters, as modules `runtime_<case>`:
 /// a chain, a floating tree with its derivative functions, f32 `no_std`, and the
 /// Lagrangian route. Each is registered with the parameters' defaults (against the robot)
@@ -418,6 +429,7 @@ fn main() {
             functions,
             runtime_parameters: case.runtime,
             cpu_dispatch: !case.portable,
+            sin_cos_variants: SIN_COS.contains(&case.module.as_str()),
             method: if case.module.contains("lagrangian_") {
                 dynamics_gen::Method::Lagrangian
             } else {
@@ -436,11 +448,14 @@ fn main() {
         } else {
             ", frames"
         };
-        let copies = if COPIES.contains(&case.module.as_str()) {
+        let mut copies = if COPIES.contains(&case.module.as_str()) {
             copies_helper(nq, nv, s)
         } else {
             String::new()
         };
+        if SIN_COS.contains(&case.module.as_str()) {
+            copies += &sin_cos_helper(nq, nv, s);
+        }
         writeln!(
             modules,
             "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); {copies}}}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
@@ -560,6 +575,43 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("trig_kernels.rs"), kernels).expect("OUT_DIR is writable");
+}
+
+/// The source of `sin_cos_variants_differ` for a [`SIN_COS`] module: the inverse dynamics,
+/// mass matrix, coriolis, gravity, forward dynamics (with `a` as τ) and kinetic energy at one
+/// state, and their `*_from_sin_cos` variants with `sin_cos(q)`, as (entries compared, entries
+/// whose bits differ, the largest difference relative to the largest entry of its function).
+fn sin_cos_helper(nq: usize, nv: usize, s: &str) -> String {
+    format!(
+        r#"
+/// Each function against its `*_from_sin_cos` variant fed `sin_cos(q)`, at one state.
+pub fn sin_cos_variants_differ(q: &[f64], v: &[f64], a: &[f64]) -> (usize, usize, f64) {{
+    let r = Robot::DEFAULT;
+    let (q, v, a) = (crate::to_s::<{s}, {nq}>(q), crate::to_s::<{s}, {nv}>(v), crate::to_s::<{s}, {nv}>(a));
+    let (sq, cq) = r.sin_cos(&q);
+    let mut n = (0, 0, 0.0f64);
+    let mut cmp = |x: &[{s}], y: &[{s}]| {{
+        let scale = x.iter().fold(0.0, |m: f64, x| m.max(crate::Real::to_f64(x.abs())));
+        for (x, y) in x.iter().zip(y) {{
+            n.0 += 1;
+            if x.to_bits() != y.to_bits() {{
+                n.1 += 1;
+                n.2 = n.2.max(crate::Real::to_f64((x - y).abs()) / scale.max(f64::MIN_POSITIVE));
+            }}
+        }}
+    }};
+    cmp(r.inverse_dynamics(&q, &v, &a).as_slice(), r.inverse_dynamics_from_sin_cos(&q, &sq, &cq, &v, &a).as_slice());
+    cmp(r.mass_matrix(&q).as_slice(), r.mass_matrix_from_sin_cos(&q, &sq, &cq).as_slice());
+    cmp(r.coriolis(&q, &v).as_slice(), r.coriolis_from_sin_cos(&q, &sq, &cq, &v).as_slice());
+    cmp(r.gravity(&q).as_slice(), r.gravity_from_sin_cos(&q, &sq, &cq).as_slice());
+    cmp(r.forward_dynamics(&q, &v, &a).as_slice(), r.forward_dynamics_from_sin_cos(&q, &sq, &cq, &v, &a).as_slice());
+    cmp(&[r.kinetic_energy(&q, &v)], &[r.kinetic_energy_from_sin_cos(&q, &sq, &cq, &v)]);
+    n
+}}
+/// `(nq, nv)` of this robot, for `sin_cos_variants_differ`'s arguments.
+pub const SIN_COS_DIMS: (usize, usize) = ({nq}, {nv});
+"#
+    )
 }
 
 /// The source of `dispatched_copies_differ` for a [`COPIES`] module: the inverse dynamics,

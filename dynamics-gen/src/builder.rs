@@ -172,6 +172,16 @@ impl Builder {
         self
     }
 
+    /// Also generate, for each function that computes the sines and cosines of joint
+    /// angles, a `*_from_sin_cos(q, sin_q, cos_q, …)` variant that takes them from the
+    /// caller, and `sin_cos(q)` that computes them as the functions do (default `false`): a
+    /// controller that needs several functions at one state computes them once
+    /// (see [`crate::emit::given_sin_cos`]).
+    pub fn sin_cos_variants(mut self, variants: bool) -> Self {
+        self.options.sin_cos_variants = variants;
+        self
+    }
+
     /// The link that carries the payload of [`Builder::runtime_parameters`] (which this
     /// turns on).
     pub fn payload_link(mut self, link: impl Into<String>) -> Self {
@@ -288,6 +298,9 @@ impl Builder {
         }
         if !o.cpu_dispatch {
             s += ".cpu_dispatch(false)";
+        }
+        if o.sin_cos_variants {
+            s += ".sin_cos_variants(true)";
         }
         if let Some(g) = o.load.gravity {
             s += &format!(".gravity([{:?}, {:?}, {:?}])", g[0], g[1], g[2]);

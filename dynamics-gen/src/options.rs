@@ -74,6 +74,10 @@ pub struct Options {
     /// x86-64, each numeric function gets copies compiled for AVX-512 and for AVX2 with FMA,
     /// called when the CPU has them. `false`: one copy, no `unsafe`, the same results on every x86-64 CPU.
     pub cpu_dispatch: bool,
+    /// Also emit, for each function that computes the sines and cosines of joint angles,
+    /// a `*_from_sin_cos` variant that takes them from the caller, and `sin_cos(q)`
+    /// ([`crate::emit::given_sin_cos`]); default `false`.
+    pub sin_cos_variants: bool,
 }
 
 /// The friction model of the generated `friction(q̇)`: viscous damping `b q̇` plus Coulomb
@@ -148,6 +152,7 @@ impl Default for Options {
             runtime_parameters: false,
             cpu_dispatch: true,
             payload_link: None,
+            sin_cos_variants: false,
         }
     }
 }

@@ -97,6 +97,65 @@ impl Default for Ur5Payload {
     }
 }
 
+/// The UR5 with the `*_from_sin_cos` variants.
+#[derive(Dynamics)]
+#[dynamics(file = "../robots/ur5.urdf", sin_cos_variants)]
+struct Ur5SinCos;
+
+dynamics_macros::robot! {
+    /// robots/pendulum.toml, inline, with the `*_from_sin_cos` variants.
+    pub struct PendulumSinCos;
+    gravity: [0.0, 0.0, -10.0],
+    sin_cos_variants: true,
+    joint revolute joint1 {
+        screw: [0, 0, 1, 0, 0, 0],
+        link arm { home: { xyz: [1, 0, 0] }, mass: 2.0, inertia: [4, 4, 4, 0, 0, 0] },
+    },
+    joint revolute joint2 {
+        screw: [1, 0, 0, 0, 0, 0],
+        link pendulum { home: { xyz: [0, 0, -1] }, mass: 2.0, inertia: [4, 4, 0, 0, 0, 0] },
+    },
+    end_effector bob { home: { xyz: [0, 0, 0] } },
+}
+
+/// Both front ends' `sin_cos_variants`: each variant fed `sin_cos(q)` gives its function's
+/// bits.
+#[test]
+fn sin_cos_variants_from_both_macros_equal_the_functions() {
+    let mut rng = Lcg(5);
+    for _ in 0..32 {
+        let q: SVector<f64, 6> = rng.vector(3.0);
+        let qd: SVector<f64, 6> = rng.vector(2.0);
+        let qdd: SVector<f64, 6> = rng.vector(2.0);
+        let r = Ur5SinCos;
+        let (s, c) = r.sin_cos(&q);
+        // The sines and cosines themselves (2 ulp of 1 at most).
+        assert!((s - q.map(f64::sin)).amax() <= 5e-16 && (c - q.map(f64::cos)).amax() <= 5e-16);
+        assert_eq!(
+            r.inverse_dynamics_from_sin_cos(&q, &s, &c, &qd, &qdd),
+            r.inverse_dynamics(&q, &qd, &qdd)
+        );
+        assert_eq!(r.mass_matrix_from_sin_cos(&q, &s, &c), r.mass_matrix(&q));
+        assert_eq!(
+            r.jacobian_body_from_sin_cos(&q, &s, &c),
+            r.jacobian_body(&q)
+        );
+        assert_eq!(
+            r.end_effector_pose_from_sin_cos(&q, &s, &c),
+            r.end_effector_pose(&q)
+        );
+        let q: Vector2<f64> = rng.vector(3.0);
+        let qd: Vector2<f64> = rng.vector(2.0);
+        let p = PendulumSinCos;
+        let (s, c) = p.sin_cos(&q);
+        assert_eq!(
+            p.coriolis_from_sin_cos(&q, &s, &c, &qd),
+            p.coriolis(&q, &qd)
+        );
+        assert_eq!(p.gravity_from_sin_cos(&q, &s, &c), p.gravity(&q));
+    }
+}
+
 fn load(file: &str) -> Robot {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(file);
     load_file(&path, &LoadOptions::default()).unwrap()

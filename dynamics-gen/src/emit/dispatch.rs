@@ -198,6 +198,50 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
 /// function (`X_batch`) is dispatched exactly when its single-state function `X` is, so
 /// that the two fuse alike and give the same bits.
 fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> TokenStream {
+    let items = impl_items(stream);
+    let mut sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i, scalar)).collect();
+    let singles: Vec<String> = sigs
+        .iter()
+        .flatten()
+        .filter(|s| s.generic_names.is_empty())
+        .map(|s| s.name.to_string())
+        .collect();
+    // A `*_from_sin_cos` variant follows its function whatever its own size (it may have
+    // no sines and cosines left to compute).
+    for (item, sig) in items.iter().zip(sigs.iter_mut()) {
+        if sig.is_none() {
+            let forced = signature_of(item, scalar, true).filter(|s| {
+                s.name
+                    .to_string()
+                    .strip_suffix(super::given_sin_cos::SUFFIX)
+                    .is_some_and(|f| singles.iter().any(|n| n == f))
+            });
+            *sig = forced;
+        }
+    }
+    let mut out = TokenStream::new();
+    for (item, sig) in items.into_iter().zip(sigs) {
+        let follows = |s: &Signature| {
+            s.generic_names.is_empty()
+                || s.name
+                    .to_string()
+                    .strip_suffix("_batch")
+                    .is_some_and(|single| singles.iter().any(|n| n == single))
+        };
+        match sig.filter(follows) {
+            Some(sig) => {
+                out.extend(dispatched(&item, sig, used));
+                used.any = true;
+            }
+            None => out.extend(item),
+        }
+    }
+    out
+}
+
+/// The items of an impl body: each function (attributes to body) or other item (to its
+/// `;`), and what follows the last one.
+pub(crate) fn impl_items(stream: TokenStream) -> Vec<Vec<TokenTree>> {
     let mut items: Vec<Vec<TokenTree>> = Vec::new();
     let mut item: Vec<TokenTree> = Vec::new();
     let mut seen_fn = false;
@@ -217,32 +261,10 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
             seen_fn = false;
         }
     }
-    let sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i, scalar)).collect();
-    let singles: Vec<String> = sigs
-        .iter()
-        .flatten()
-        .filter(|s| s.generic_names.is_empty())
-        .map(|s| s.name.to_string())
-        .collect();
-    let mut out = TokenStream::new();
-    for (item, sig) in items.into_iter().zip(sigs) {
-        let follows = |s: &Signature| {
-            s.generic_names.is_empty()
-                || s.name
-                    .to_string()
-                    .strip_suffix("_batch")
-                    .is_some_and(|single| singles.iter().any(|n| n == single))
-        };
-        match sig.filter(follows) {
-            Some(sig) => {
-                out.extend(dispatched(&item, sig, used));
-                used.any = true;
-            }
-            None => out.extend(item),
-        }
+    if !item.is_empty() {
+        items.push(item);
     }
-    out.extend(item);
-    out
+    items
 }
 
 /// What [`dispatched`] needs of an eligible function.
@@ -264,6 +286,11 @@ struct Signature {
 /// The signature of `item` (attributes, `pub fn name(&self, …) -> R { body }`) when it is
 /// eligible, otherwise `None`.
 fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
+    signature_of(item, scalar, false)
+}
+
+/// [`signature`], with `forced`: whatever the body's size and arithmetic.
+fn signature_of(item: &[TokenTree], scalar: Scalar, forced: bool) -> Option<Signature> {
     let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
     // `pub fn`, or a private `fn` (a helper such as `mass_matrix_factor`, which a public
     // function without arithmetic of its own calls): not `pub const fn`, `unsafe fn`,
@@ -297,9 +324,10 @@ fn signature(item: &[TokenTree], scalar: Scalar) -> Option<Signature> {
     let ret: TokenStream = item[after + 1..item.len() - 1].iter().cloned().collect();
     let arg_names = receiver_and_names(args.stream())?;
     let body = body.stream();
-    if !calls_arithmetic(&body)
-        || contains_ident(&body, "extern")
-        || (size(&body) < MIN_TOKENS && !several_angles(&body, scalar))
+    if contains_ident(&body, "extern")
+        || (!forced
+            && (!calls_arithmetic(&body)
+                || (size(&body) < MIN_TOKENS && !several_angles(&body, scalar))))
     {
         return None;
     }

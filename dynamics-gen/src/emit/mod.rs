@@ -10,6 +10,7 @@ pub mod derivatives;
 pub mod dispatch;
 pub mod friction;
 pub mod function;
+pub mod given_sin_cos;
 pub mod literal;
 pub mod provenance;
 pub mod regressor;
@@ -547,6 +548,11 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         }
     };
     let impl_block = select_functions(impl_block, &robot, options)?;
+    let impl_block = if options.sin_cos_variants {
+        given_sin_cos::apply(impl_block, &q_ty, nq_usize, &nalgebra)
+    } else {
+        impl_block
+    };
     let impl_block = if options.no_std || !options.cpu_dispatch {
         impl_block
     } else {

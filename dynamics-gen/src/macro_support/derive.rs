@@ -112,6 +112,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 "no_std" => attr.options.no_std = true,
                 "no_cpu_dispatch" => attr.options.cpu_dispatch = false,
+                "sin_cos_variants" => attr.options.sin_cos_variants = true,
                 "floating_base" => attr.options.load.floating_base = true,
                 "no_runtime_trait" => attr.options.runtime_path = None,
                 "runtime" => {
@@ -235,7 +236,7 @@ pub fn parse_attrs(input: &syn::DeriveInput, errors: &mut Errors) -> Attr {
                 }
                 _ => {
                     return Err(meta.error(format!(
-                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, no_cpu_dispatch, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, snap_angles = TOL, method = \"newton_euler\" | \"lagrangian\", runtime_parameters, payload_link = \"LINK\"",
+                        "unknown option `{}` of #[dynamics(..)]; the options are file = \"PATH\", scalar = \"f64\" | \"f32\", no_std, no_cpu_dispatch, sin_cos_variants, nalgebra = PATH, runtime = PATH, no_runtime_trait, gravity = [gx, gy, gz], floating_base, tip = \"LINK\", frames(LINK, ..), functions(NAME, ..), lock(JOINT = VALUE, ..), armature(JOINT = VALUE, ..), friction, friction_smoothing = EPS, snap_angles = TOL, method = \"newton_euler\" | \"lagrangian\", runtime_parameters, payload_link = \"LINK\"",
                         meta.path.to_token_stream()
                     )))
                 }

@@ -58,6 +58,8 @@ pub struct Generation {
     pub payload_link: Option<String>,
     /// `cpu_dispatch: false` (default `true`).
     pub no_cpu_dispatch: bool,
+    /// `sin_cos_variants: true` (default `false`).
+    pub sin_cos_variants: bool,
 }
 
 /// One item of a block: `key: value` or `keyword ARGS { … }`.
@@ -162,6 +164,17 @@ fn build(ident: &Ident, rest: TokenStream) -> Result<(Robot, Generation), syn::E
                         Some(_) => errors.at(
                             &e.tokens,
                             "`cpu_dispatch` is `true` (the default: on x86-64 copies of each function compiled for AVX-512 and for AVX2, chosen at run time) or `false` (one copy, no `unsafe`)",
+                        ),
+                        None => {}
+                    }
+                } else if e.key == "sin_cos_variants" {
+                    match v {
+                        Some(Toml::String(s)) if s == "true" || s == "false" => {
+                            generation.sin_cos_variants = s == "true";
+                        }
+                        Some(_) => errors.at(
+                            &e.tokens,
+                            "`sin_cos_variants` is `true` (also a `*_from_sin_cos` variant of each function that takes the joints' sines and cosines, and `sin_cos(q)`) or `false` (the default)",
                         ),
                         None => {}
                     }

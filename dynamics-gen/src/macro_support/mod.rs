@@ -68,7 +68,9 @@
 //! ```
 //!
 //! Options: `scalar = "f32"`, `no_std`, `no_cpu_dispatch` (no AVX-512 or AVX2 copies chosen
-//! at run time; see [`crate::emit::dispatch`]), `nalgebra = path::to::nalgebra`,
+//! at run time; see [`crate::emit::dispatch`]), `sin_cos_variants` (a `*_from_sin_cos`
+//! variant of each function that takes the joints' sines and cosines, and `sin_cos(q)`; see
+//! [`crate::emit::given_sin_cos`]), `nalgebra = path::to::nalgebra`,
 //! `gravity = [gx, gy, gz]`, `floating_base` (a free 6-DoF joint between the world and the
 //! base), `runtime = path::to::dynamics_runtime` or `no_runtime_trait`,
 //! and for URDF `tip = "LINK"` (the end effector of `end_effector_pose` and the Jacobians),
@@ -146,6 +148,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
         runtime_parameters: generation.runtime_parameters,
         payload_link: generation.payload_link,
         cpu_dispatch: !generation.no_cpu_dispatch,
+        sin_cos_variants: generation.sin_cos_variants,
         ..Options::default()
     };
     match crate::generate_impl(&robot, &options) {

@@ -49,11 +49,12 @@ pub const ROBOT_KEYS: &[(&str, Type)] = &[
     ("parameters", Type::Params),
     // Not TOML keys but generation options: how the dynamics are derived (`newton_euler` or
     // `lagrangian`), run-time gravity and payload (`true`), the payload's link, run-time CPU
-    // dispatch (`false` turns it off).
+    // dispatch (`false` turns it off), the `*_from_sin_cos` variants (`true`).
     ("method", Type::Name),
     ("runtime_parameters", Type::Name),
     ("payload_link", Type::Name),
     ("cpu_dispatch", Type::Name),
+    ("sin_cos_variants", Type::Name),
 ];
 
 /// Keys of a joint (the `[[joint]]` table).

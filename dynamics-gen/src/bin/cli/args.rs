@@ -216,6 +216,12 @@ pub struct GenerateArgs {
     /// one copy, no `unsafe`, the same bits on every x86-64 CPU.
     #[arg(long)]
     pub no_cpu_dispatch: bool,
+    /// Also generate, for each function that computes the sines and cosines of joint
+    /// angles, a `*_from_sin_cos(q, sin_q, cos_q, ...)` variant that takes them from the
+    /// caller, and `sin_cos(q)`, which computes them as the functions do (for a controller
+    /// that calls several functions at one state: the sines and cosines once).
+    #[arg(long)]
+    pub sin_cos_variants: bool,
     /// Write the code to FILE instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

@@ -28,6 +28,7 @@ pub fn run(args: &GenerateArgs) -> Result<(), String> {
         runtime_parameters: args.runtime_parameters,
         payload_link: args.payload_link.clone(),
         cpu_dispatch: !args.no_cpu_dispatch,
+        sin_cos_variants: args.sin_cos_variants,
     };
     if let Some(name) = &args.name {
         dynamics_gen::options::check_struct_name(name).map_err(|e| e.to_string())?;
@@ -66,6 +67,9 @@ fn command(args: &GenerateArgs) -> String {
     }
     if args.no_cpu_dispatch {
         words.push("--no-cpu-dispatch".into());
+    }
+    if args.sin_cos_variants {
+        words.push("--sin-cos-variants".into());
     }
     if let Some(g) = m.gravity {
         words.push(format!("--gravity={},{},{}", g[0], g[1], g[2]));
