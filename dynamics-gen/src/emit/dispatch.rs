@@ -485,10 +485,28 @@ fn const_generics(tokens: &[TokenTree]) -> Option<(TokenStream, Vec<Ident>, usiz
 /// The argument names after a `&self` receiver (`None` without one, or for a pattern
 /// argument).
 fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
-    // Split at the commas outside angle brackets (`SVector<f64, 7>`).
+    let mut parts = split_commas(args).into_iter();
+    let receiver = parts.next()?;
+    let is_self = matches!(receiver.as_slice(), [TokenTree::Punct(a), TokenTree::Ident(s)] if a.as_char() == '&' && s == "self");
+    if !is_self {
+        return None;
+    }
+    parts
+        .map(|p| match (p.first(), p.get(1)) {
+            (Some(TokenTree::Ident(i)), Some(TokenTree::Punct(c))) if c.as_char() == ':' => {
+                Some(i.clone())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The non-empty runs of `tokens` between commas outside angle brackets (`SVector<f64, 7>`
+/// is one): a function's arguments, or an array's elements.
+pub(crate) fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
     let mut parts: Vec<Vec<TokenTree>> = vec![Vec::new()];
     let mut depth = 0i32;
-    for t in args {
+    for t in tokens {
         match &t {
             TokenTree::Punct(p) if p.as_char() == '<' => depth += 1,
             TokenTree::Punct(p) if p.as_char() == '>' => depth -= 1,
@@ -502,21 +520,8 @@ fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
             last.push(t);
         }
     }
-    let mut parts = parts.into_iter();
-    let receiver = parts.next()?;
-    let is_self = matches!(receiver.as_slice(), [TokenTree::Punct(a), TokenTree::Ident(s)] if a.as_char() == '&' && s == "self");
-    if !is_self {
-        return None;
-    }
+    parts.retain(|p| !p.is_empty());
     parts
-        .filter(|p| !p.is_empty())
-        .map(|p| match (p.first(), p.get(1)) {
-            (Some(TokenTree::Ident(i)), Some(TokenTree::Punct(c))) if c.as_char() == ':' => {
-                Some(i.clone())
-            }
-            _ => None,
-        })
-        .collect()
 }
 
 /// The smallest body (in tokens) worth a second copy unless it takes several sines and

@@ -134,7 +134,7 @@ fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
         return None;
     }
     let q_arg = quote!(q: &#q_ty).to_string();
-    let args_text: Vec<String> = split_commas(args.stream())
+    let args_text: Vec<String> = super::dispatch::split_commas(args.stream())
         .iter()
         .map(|a| a.iter().cloned().collect::<TokenStream>().to_string())
         .collect();
@@ -142,7 +142,10 @@ fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
     let new_body = unbind_unused(given(body.stream())?);
     // The arguments with `sin_q`, `cos_q` after `q`.
     let mut new_args = TokenStream::new();
-    for (k, a) in split_commas(args.stream()).into_iter().enumerate() {
+    for (k, a) in super::dispatch::split_commas(args.stream())
+        .into_iter()
+        .enumerate()
+    {
         new_args.extend(a);
         new_args.extend(quote!(,));
         if k == qi {
@@ -175,28 +178,6 @@ fn contains_extern(stream: &TokenStream) -> bool {
         TokenTree::Group(g) => contains_extern(&g.stream()),
         _ => false,
     })
-}
-
-/// The items of `args` between top-level commas (commas inside `<…>` do not split).
-fn split_commas(args: TokenStream) -> Vec<Vec<TokenTree>> {
-    let mut parts: Vec<Vec<TokenTree>> = vec![Vec::new()];
-    let mut depth = 0i32;
-    for t in args {
-        match &t {
-            TokenTree::Punct(p) if p.as_char() == '<' => depth += 1,
-            TokenTree::Punct(p) if p.as_char() == '>' => depth -= 1,
-            TokenTree::Punct(p) if p.as_char() == ',' && depth == 0 => {
-                parts.push(Vec::new());
-                continue;
-            }
-            _ => {}
-        }
-        if let Some(last) = parts.last_mut() {
-            last.push(t);
-        }
-    }
-    parts.retain(|p| !p.is_empty());
-    parts
 }
 
 /// `body` with its batch of sines and cosines (`let ([s…], [c…]) =
@@ -263,7 +244,7 @@ fn given(body: TokenStream) -> Option<TokenStream> {
 /// The statements that bind the patterns `pats` (`[s…], [c…]`) of the batch over `args`:
 /// `sin_q`, `cos_q` entries for the arguments `q<i>`, one smaller batch for the rest.
 fn replacement(pats: &TokenStream, args: &TokenStream) -> Option<TokenStream> {
-    let args = split_commas(args.clone());
+    let args = super::dispatch::split_commas(args.clone());
     let index = |a: &[TokenTree]| match a {
         [TokenTree::Ident(i)] => i.to_string().strip_prefix('q')?.parse::<usize>().ok(),
         _ => None,
