@@ -60,9 +60,13 @@ fn coupled_expansion_is_the_physical_one_projected() {
         let (nq, nv, n) = (r.nq(), r.nv(), r.n_coordinates());
         assert_eq!((d.dof, d.nq, d.nv), (n, nq, nv));
         assert_eq!(d.forward_route, ForwardRoute::Ldlt, "robot {k}");
-        // Only the coordinates are inputs.
+        // Only the coordinates are inputs (and the tip wrench's six).
         for x in d.graph.inputs() {
-            let len = if x.group == Q { nq } else { nv };
+            let len = match x.group {
+                Q => nq,
+                super::task_space::F_TIP => 6,
+                _ => nv,
+            };
             assert!((x.index as usize) < len, "robot {k}: input {x}");
         }
         let mut physical = r.clone();

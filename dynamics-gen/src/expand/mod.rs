@@ -170,6 +170,12 @@ pub struct Dynamics {
     pub mass_matrix_factor: Vec<ExprId>,
     /// `1 / D_k` of the same factorisation.
     pub mass_matrix_inv_d: Vec<ExprId>,
+    /// `τ + J_bᵀ F_tip` by Newton–Euler with the end effector's wrench `F_tip` (inputs
+    /// [`task_space::F_TIP`]) applied at its link ([`rnea::ExternalWrench`]); empty where not
+    /// expanded (the Lagrangian route: [`task_space`] then adds `J_bᵀ F_tip`).
+    pub inverse_dynamics_with_tip: Vec<ExprId>,
+    /// `h + J_bᵀ F_tip` the same way (the bias of `forward_dynamics_with_tip`).
+    pub bias_with_tip: Vec<ExprId>,
 }
 
 /// Expands the five functions of `robot` (gravity as in `robot.gravity`), forward dynamics
@@ -299,6 +305,8 @@ pub(crate) fn expand_lagrangian(robot: &Robot, prune: bool) -> Dynamics {
         inverse_dynamics: next(),
         bias: next(),
         forward_dynamics: next(),
+        inverse_dynamics_with_tip: Vec::new(),
+        bias_with_tip: Vec::new(),
     };
     let kinetic_energy = next().first().copied();
     finish(
@@ -319,6 +327,9 @@ struct Outputs {
     inverse_dynamics: Vec<ExprId>,
     bias: Vec<ExprId>,
     forward_dynamics: Vec<ExprId>,
+    /// Empty where not expanded (the Lagrangian route).
+    inverse_dynamics_with_tip: Vec<ExprId>,
+    bias_with_tip: Vec<ExprId>,
 }
 
 /// The outputs derived from the mass matrix (`K`, unless given, `Ṁ`, `C`, the `Lᵀ D L`
@@ -354,6 +365,8 @@ fn finish(
         mass_matrix_dot,
         coriolis_matrix,
         bias: o.bias,
+        inverse_dynamics_with_tip: o.inverse_dynamics_with_tip,
+        bias_with_tip: o.bias_with_tip,
         mass_matrix_factor: factor,
         mass_matrix_inv_d: inv_d,
     }
@@ -417,20 +430,17 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         }
     }
     let mass_matrix = coupling.matrix(&mut g, &mass_matrix);
-    let best_rnea = |g: &mut ExprGraph, v: &[ExprId], vd: &[ExprId], gravity: spatial::V3| {
+    let best_rnea = |g: &mut ExprGraph,
+                     v: &[ExprId],
+                     vd: &[ExprId],
+                     gravity: spatial::V3,
+                     external: Option<&rnea::ExternalWrench>| {
         let base = base::base_motion(g, floating, &v[..ov], &vd[..ov], gravity);
         let (v, vd) = (&v[ov..], &vd[ov..]);
-        let a = rnea::rnea(g, &motions, &base, base_inertia, v, vd, LinkForce::Spatial);
-        let b = rnea::rnea(
-            g,
-            &motions,
-            &base,
-            base_inertia,
-            v,
-            vd,
-            LinkForce::Classical,
-        );
-        let c = rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd);
+        let forms = [LinkForce::Spatial, LinkForce::Classical];
+        let [a, b] =
+            forms.map(|f| rnea::rnea(g, &motions, &base, base_inertia, v, vd, f, external));
+        let c = rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd, external);
         // The cheapest of the equal forms (ties keep the earlier one), projected onto the
         // coordinates.
         let best = cheaper(g, a, b);
@@ -444,10 +454,14 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         }
         coupling.forces(g, &best)
     };
-    let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity);
-    let gravity = best_rnea(&mut g, &zeros, &zeros, gravity_vec);
-    let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, gravity_vec);
-    let bias = best_rnea(&mut g, &qd, &zeros, gravity_vec);
+    let coriolis = best_rnea(&mut g, &qd, &zeros, no_gravity, None);
+    let gravity = best_rnea(&mut g, &zeros, &zeros, gravity_vec, None);
+    let inverse_dynamics = best_rnea(&mut g, &qd, &qdd, gravity_vec, None);
+    let bias = best_rnea(&mut g, &qd, &zeros, gravity_vec, None);
+    // With the end effector's wrench F_tip (inputs `task_space::F_TIP`) as F_{n+1}.
+    let tip = tip_wrench(&mut g, robot, &frames);
+    let inverse_dynamics_with_tip = best_rnea(&mut g, &qd, &qdd, gravity_vec, Some(&tip));
+    let bias_with_tip = best_rnea(&mut g, &qd, &zeros, gravity_vec, Some(&tip));
     let rhs: Vec<ExprId> = (0..nv).map(|i| g.sub(tau[i], bias[i])).collect();
     // The factorisation from the first row (L D Lᵀ) or from the last (Lᵀ D L, which keeps a
     // tree's structural zeros): the cheaper.
@@ -491,14 +505,22 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         Some(ForwardRoute::Ldlt) => vec![&by_ldlt],
         Some(ForwardRoute::Aba) => vec![&by_aba],
     };
-    let mut roots: Vec<&[ExprId]> =
-        vec![&mass_matrix, &coriolis, &gravity, &inverse_dynamics, &bias];
+    let mut roots: Vec<&[ExprId]> = vec![
+        &mass_matrix,
+        &coriolis,
+        &gravity,
+        &inverse_dynamics,
+        &bias,
+        &inverse_dynamics_with_tip,
+        &bias_with_tip,
+    ];
     roots.extend(candidates);
     let (g, pruned) = prune_if(prune, g, &roots);
     let mut pruned = pruned.into_iter();
     let mut next = || pruned.next().unwrap_or_default();
     let (mass_matrix, coriolis, gravity, inverse_dynamics, bias) =
         (next(), next(), next(), next(), next());
+    let (inverse_dynamics_with_tip, bias_with_tip) = (next(), next());
     let (by_ldlt, by_aba) = match route {
         None => (next(), next()),
         Some(ForwardRoute::Ldlt) => (next(), Vec::new()),
@@ -522,8 +544,40 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         inverse_dynamics,
         forward_dynamics,
         bias,
+        inverse_dynamics_with_tip,
+        bias_with_tip,
     };
     finish(g, Method::NewtonEuler, route, (k, oq, nv), outputs, None)
+}
+
+/// The end effector's wrench `F_tip = (m, f)` (inputs [`task_space::F_TIP`], in the end
+/// effector's frame `f`) in the joint frame of its link: with `(R, p) = T_{J,f}`, `(R m + p ×
+/// R f, R f)` (`[Ad_{T_{f,J}}]ᵀ F_tip`); on the base, in {0}.
+fn tip_wrench(
+    g: &mut ExprGraph,
+    robot: &Robot,
+    frames: &frames::JointFrames,
+) -> rnea::ExternalWrench {
+    let ee = &robot.end_effector;
+    let home = robot.frame_home(ee);
+    let k = match ee.parent {
+        Some(j) => dynamics_model::lie::trans_inv(&frames.homes[j]) * home,
+        None => home,
+    };
+    let r: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| k[(i, j)]));
+    let p = g.const3([k[(0, 3)], k[(1, 3)], k[(2, 3)]]);
+    let m: spatial::V3 = std::array::from_fn(|i| g.input(input(task_space::F_TIP, i)));
+    let f: spatial::V3 = std::array::from_fn(|i| g.input(input(task_space::F_TIP, 3 + i)));
+    let rf = g.rot(&r, f);
+    let rm = g.rot(&r, m);
+    let pxrf = g.cross(p, rf);
+    rnea::ExternalWrench {
+        joint: ee.parent,
+        wrench: spatial::Spatial {
+            ang: g.add3(rm, pxrf),
+            lin: rf,
+        },
+    }
 }
 
 /// The Coriolis matrix from the Christoffel symbols of the first kind of `m` (nv×nv

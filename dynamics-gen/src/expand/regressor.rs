@@ -198,9 +198,18 @@ pub fn expand_regressor(robot: &Robot) -> Regressor {
         let base = base::base_motion(&mut g, floating, &qd[..ov], &qdd[..ov], gravity);
         let (v, vd) = (&qd[ov..], &qdd[ov..]);
         let bi = jf.base.as_ref();
-        let a = rnea::rnea(&mut g, &motions, &base, bi, v, vd, LinkForce::Spatial);
-        let c = rnea::rnea(&mut g, &motions, &base, bi, v, vd, LinkForce::Classical);
-        let d = super::rnea_classical::rnea_classical(&mut g, &motions, &base, bi, v, vd);
+        let a = rnea::rnea(&mut g, &motions, &base, bi, v, vd, LinkForce::Spatial, None);
+        let c = rnea::rnea(
+            &mut g,
+            &motions,
+            &base,
+            bi,
+            v,
+            vd,
+            LinkForce::Classical,
+            None,
+        );
+        let d = super::rnea_classical::rnea_classical(&mut g, &motions, &base, bi, v, vd, None);
         let best = cheaper(&g, a, c);
         let best = cheaper(&g, best, d);
         columns.push(coupling.forces(&mut g, &best));

@@ -41,10 +41,23 @@ pub struct BaseMotion {
     pub vd: Spatial,
 }
 
+/// A wrench the robot applies to its environment at one body, in that body's joint frame
+/// (`F_{n+1}` of Modern Robotics §8.3.2, the end effector's `F_tip` moved to its link's
+/// joint frame): the backward pass adds it to the body's own wrench, so that it reaches the
+/// base along the rotations the pass makes anyway.
+#[derive(Clone, Copy, Debug)]
+pub struct ExternalWrench {
+    /// The joint whose child body carries it; `None`: the base (no torque on a fixed one).
+    pub joint: Option<usize>,
+    /// `(m, f)` in that joint's frame (in {0} on the base).
+    pub wrench: Spatial,
+}
+
 /// The generalised forces for the given symbolic velocities and accelerations (use constant
 /// zeros to drop terms), the base's motion `base` included: with a floating base
 /// (`base_inertia`, in the base frame) the six base entries (the wrench `(m, f)` on the
-/// base, in its frame) come first.
+/// base, in its frame) come first; `external`: a wrench the robot applies as well.
+#[allow(clippy::too_many_arguments)]
 pub fn rnea(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
@@ -53,6 +66,7 @@ pub fn rnea(
     qd: &[ExprId],
     qdd: &[ExprId],
     form: LinkForce,
+    external: Option<&ExternalWrench>,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let mut vs: Vec<Spatial> = Vec::with_capacity(n);
@@ -101,7 +115,7 @@ pub fn rnea(
         let gb = Inertia::constant(g, b);
         link_force(g, &gb, &base.v, &base.vd, form)
     });
-    backward_pass(g, joints, &forces, base_force)
+    backward_pass(g, joints, &forces, base_force, external)
 }
 
 /// The wrench `F = G V̇ − [ad_V]ᵀ G V` of a body with inertia `gi`, twist `v` and
@@ -151,16 +165,30 @@ pub fn link_force(
 /// The backward pass shared by the Newton–Euler forms: accumulate the link wrenches toward
 /// the base, `F_λ(i) += [Ad_{T_{i,λ(i)}}]ᵀ F_i` (children before parents: reverse order),
 /// and read `τ_i = A_iᵀ F_i`; with a floating base (`base_force` = the base body's own
-/// wrench) the six base entries, the total wrench on the base, come first.
+/// wrench) the six base entries, the total wrench on the base, come first. `external` is
+/// added to its body's wrench first.
 pub fn backward_pass(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
     forces: &[Spatial],
     base_force: Option<Spatial>,
+    external: Option<&ExternalWrench>,
 ) -> Vec<ExprId> {
     let n = joints.len();
     let mut acc = forces.to_vec();
     let mut base = base_force;
+    if let Some(e) = external {
+        let target = match e.joint {
+            Some(j) => Some(&mut acc[j]),
+            None => base.as_mut(),
+        };
+        if let Some(t) = target {
+            *t = Spatial {
+                ang: g.add3(t.ang, e.wrench.ang),
+                lin: g.add3(t.lin, e.wrench.lin),
+            };
+        }
+    }
     let mut tau = vec![g.zero(); n];
     for i in (0..n).rev() {
         let f = acc[i];

@@ -42,7 +42,8 @@ fn transport(g: &mut ExprGraph, a: V3, w: V3, w_sq: ExprId, wd: V3, r: V3) -> V3
 }
 
 /// The generalised forces for the given symbolic velocities and accelerations and the
-/// base's motion, as [`super::rnea::rnea`] (base entries first with a floating base).
+/// base's motion, as [`super::rnea::rnea`] (base entries first with a floating base;
+/// `external` as there).
 pub fn rnea_classical(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
@@ -50,6 +51,7 @@ pub fn rnea_classical(
     base_inertia: Option<&BodyInertia>,
     qd: &[ExprId],
     qdd: &[ExprId],
+    external: Option<&super::rnea::ExternalWrench>,
 ) -> Vec<ExprId> {
     let n = joints.len();
     // The base's ω, |ω|², ω̇ and the classical acceleration a = v̇ + ω × v of its origin.
@@ -124,5 +126,5 @@ pub fn rnea_classical(
         let gb = Inertia::constant(g, b);
         link_force(g, &gb, &base.v, &base.vd, LinkForce::Classical)
     });
-    super::rnea::backward_pass(g, joints, &forces, base_force)
+    super::rnea::backward_pass(g, joints, &forces, base_force, external)
 }
