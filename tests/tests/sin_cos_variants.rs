@@ -13,13 +13,13 @@
 
 #![allow(missing_docs)]
 
-use dynamics_tests::generated::{mimic_301_f64, shipped_ur5_f32_no_std, tree_solo12, urdf_panda};
+use dynamics_tests::generated::{shipped_ur5_f32_no_std, tree_solo12, urdf_panda};
 
 #[test]
 fn variants_fed_sin_cos_give_the_functions_bits() {
     type Differ = fn(&[f64], &[f64], &[f64]) -> (usize, usize, f64);
     // (name, helper, dimensions, whether the bits must be equal).
-    let cases: [(&str, Differ, (usize, usize), bool); 4] = [
+    let cases: [(&str, Differ, (usize, usize), bool); 3] = [
         (
             "urdf_panda",
             urdf_panda::sin_cos_variants_differ,
@@ -37,12 +37,6 @@ fn variants_fed_sin_cos_give_the_functions_bits() {
             shipped_ur5_f32_no_std::sin_cos_variants_differ,
             shipped_ur5_f32_no_std::SIN_COS_DIMS,
             true,
-        ),
-        (
-            "mimic_301_f64",
-            mimic_301_f64::sin_cos_variants_differ,
-            mimic_301_f64::SIN_COS_DIMS,
-            false,
         ),
     ];
     // Seeded uniform numbers in [−1, 1).
