@@ -7,8 +7,9 @@
 //! beyond the `joint_sin_cos` helper's range hold bounds checks in their argument reduction that the optimiser cannot prove unreachable, so `no_panic` rejects
 //! them although the generated code itself has none.
 //!
-//! The AVX-512 and AVX2 copies of the dispatched functions are `extern "C"` (a panic in one
-//! would abort, not unwind, which `#[no_panic]` cannot see):
+//! The AVX-512 and AVX2 copies of the dispatched functions, and the batch bodies kept out of
+//! line, are `extern "C"` (a panic in one would abort, not unwind, which `#[no_panic]` cannot
+//! see):
 //! `dispatched_copies_have_no_panic_path` reads this test binary's machine code instead and
 //! follows their calls.
 
@@ -544,6 +545,20 @@ mod release {
                     && !n.ends_with("has_avx512")
                     && !n.ends_with("has_avx2")
             });
+            // The batch bodies the dispatch leaves alone (small functions) are `extern "C"`
+            // parts too, `X_batch_out_of_line`, out of line (see `batch::out_of_line`).
+            let out_of_line =
+                f.named(|n| n.contains("::generated::") && n.contains("_batch_out_of_line"));
+            assert!(
+                !out_of_line.is_empty(),
+                "no `_batch_out_of_line` body found in the test binary"
+            );
+            for &c in &out_of_line {
+                if let Some(path) = f.panic_path(&[c]) {
+                    panic!("a panic path in a batch body: {}", path.join(" -> "));
+                }
+            }
+            eprintln!("{} out-of-line batch bodies, no panic path", out_of_line.len());
             if cfg!(target_feature = "avx512f") {
                 // Compiled for AVX-512 (`-C target-cpu=native` on such a CPU): no dispatch,
                 // no copies; the wrappers above checked the only code there is.

@@ -20,12 +20,16 @@
 //! matrix), whose transpose out of the lanes costs more than the lanes gain, and for a body of
 //! more than [`MAX_LANES_OPS`] operations (a humanoid's inverse dynamics), whose `B`-wide
 //! values spill.
+//!
+//! A vectorised body the dispatch does not copy (a small function, `no_std`, no dispatch) is
+//! kept out of line, and there [`out_of_line`] moves it into a private `extern "C"` function
+//! that the public one calls: see there why.
 
 use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
 use crate::expr::{ExprGraph, ExprId};
 use crate::options::Options;
-use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
+use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
+use quote::{format_ident, quote};
 
 /// The most entries of a vectorised batch function's result: up to 8 × 8 the runtime's
 /// `Lanes::scatter` is straight-line copies. Measured (`*_batch::<8>` against 8 single calls
@@ -160,7 +164,8 @@ pub fn batch_functions(
                 // Never inlined: where it is not dispatched (`-C target-cpu=native`, other
                 // architectures, `no_std`) this function holds the whole `B`-wide body, and
                 // inlined into a caller's loop it ran 1.1–1.4× slower (UR5 and Panda, B = 8,
-                // native); where it is, `dispatch` makes the small wrapper `#[inline]` again.
+                // native); where it is, `dispatch` makes the small wrapper `#[inline]` again,
+                // and where it is not, `out_of_line` moves the body into an `extern "C"` part.
                 (wrap(f.single, body), how, quote!(#[inline(never)]))
             }
             _ => {
@@ -211,6 +216,103 @@ pub fn batch_functions(
         out.extend(lanes_helpers(options.scalar, runtime, fuses, trig));
     }
     out
+}
+
+/// The impl block with each public `X_batch<const B: usize>` marked `#[inline(never)]` (a
+/// vectorised body the dispatch left alone) split in two: `X_batch`, `#[inline]`, which only
+/// calls `X_batch_out_of_line`, the body, `#[inline(never)]` and `extern "C"`.
+///
+/// Why: a caller cannot know that a Rust-ABI function it does not see cannot unwind, so a
+/// `#[no_panic]` wrapper around `mass_matrix_batch` failed to link whenever the optimiser
+/// placed the two in different codegen units (the release `no_panic` test on a mimic chain,
+/// after unrelated changes had moved the partition). An `extern "C"` function cannot unwind
+/// by its ABI, and its callers know it from its declaration alone, as for the dispatched
+/// copies and the runtime's `Lanes::scatter`. Where the dispatch copies a batch function, its
+/// wrapper is `#[inline]` and calls `extern "C"` copies already (the `-C target-cpu` builds
+/// that have AVX-512, whose wrapper keeps the body out of line, are not split: the attribute
+/// there is a `cfg_attr`).
+pub(super) fn out_of_line(impl_block: TokenStream) -> TokenStream {
+    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
+    let Some((pos, body)) = tokens.iter().enumerate().find_map(|(k, t)| match t {
+        TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((k, g.clone())),
+        _ => None,
+    }) else {
+        return tokens.into_iter().collect();
+    };
+    let mut items = TokenStream::new();
+    for item in super::dispatch::impl_items(body.stream()) {
+        match split_out_of_line(&item) {
+            Some(split) => items.extend(split),
+            None => items.extend(item),
+        }
+    }
+    let mut group = Group::new(Delimiter::Brace, items);
+    group.set_span(body.span());
+    tokens[pos] = TokenTree::Group(group);
+    tokens.into_iter().collect()
+}
+
+/// The two functions of [`out_of_line`] for `item`, when it is an out-of-line batch function.
+fn split_out_of_line(item: &[TokenTree]) -> Option<TokenStream> {
+    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
+    let f = item.iter().position(|t| is_ident(t, "fn"))?;
+    if f == 0 || !is_ident(&item[f - 1], "pub") {
+        return None;
+    }
+    let TokenTree::Ident(name) = item.get(f + 1)? else {
+        return None;
+    };
+    if !name.to_string().ends_with("_batch") {
+        return None;
+    }
+    // The attributes, `#[…]` each: all but `#[inline(never)]` stay on the public function.
+    let never = quote!(inline(never)).to_string();
+    let (mut attrs, mut never_found) = (TokenStream::new(), false);
+    for pair in item[..f - 1].chunks(2) {
+        match pair {
+            [TokenTree::Punct(hash), TokenTree::Group(g)]
+                if hash.as_char() == '#' && g.delimiter() == Delimiter::Bracket =>
+            {
+                if g.stream().to_string() == never {
+                    never_found = true;
+                } else {
+                    attrs.extend(pair.iter().cloned());
+                }
+            }
+            _ => return None,
+        }
+    }
+    if !never_found {
+        return None;
+    }
+    let (generics, generic_names, after) = super::dispatch::const_generics(&item[f + 2..])?;
+    let after = f + 2 + after;
+    let TokenTree::Group(args) = item.get(after)? else {
+        return None;
+    };
+    let TokenTree::Group(body) = item.last()? else {
+        return None;
+    };
+    let names = super::dispatch::receiver_and_names(args.stream())?;
+    let ret: TokenStream = item[after + 1..item.len() - 1].iter().cloned().collect();
+    let inner = format_ident!("{}_out_of_line", name);
+    let doc = format!(
+        " The body of [`Self::{name}`], out of line; `extern \"C\"`, so that its callers know it cannot unwind without seeing it."
+    );
+    let (args, body) = (args.stream(), body.stream());
+    Some(quote! {
+        #attrs
+        #[inline]
+        pub fn #name<#generics>(#args) #ret {
+            self.#inner::<#(#generic_names),*>(#(#names),*)
+        }
+        #[doc = #doc]
+        #[inline(never)]
+        #[allow(improper_ctypes_definitions)]
+        extern "C" fn #inner<#generics>(#args) #ret {
+            #body
+        }
+    })
 }
 
 /// The helpers of the vectorised bodies: `mul_add_lanes` (where they fuse) and
@@ -291,4 +393,41 @@ fn lanes_helpers(
         }
     });
     quote!(#mul_add #sin_cos)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn out_of_line_batch_bodies_move_into_extern_c_parts() {
+        let block = quote! {
+            impl Robot {
+                /// The mass matrix for a batch.
+                #[inline(never)]
+                #[must_use]
+                pub fn mass_matrix_batch<const B: usize>(&self, q: &[V; B]) -> [M; B] {
+                    let x = q;
+                    body(x)
+                }
+                #[inline]
+                pub fn gravity_batch<const B: usize>(&self, q: &[V; B]) -> [V; B] {
+                    per_state(q)
+                }
+                #[inline(never)]
+                fn helper(&self) {}
+            }
+        };
+        let out = out_of_line(block).to_string().replace(' ', "");
+        assert!(out.contains(
+            "Themassmatrixforabatch.\"]#[must_use]#[inline]pubfnmass_matrix_batch<constB:usize>(&self,q:&[V;B])->[M;B]{self.mass_matrix_batch_out_of_line::<B>(q)}"
+        ), "{out}");
+        assert!(out.contains(
+            "#[inline(never)]#[allow(improper_ctypes_definitions)]extern\"C\"fnmass_matrix_batch_out_of_line<constB:usize>(&self,q:&[V;B])->[M;B]{letx=q;body(x)}"
+        ), "{out}");
+        // Not out of line, not a batch function: unchanged.
+        assert!(out.contains("#[inline]pubfngravity_batch<constB:usize>(&self,q:&[V;B])->[V;B]{per_state(q)}"));
+        assert!(out.contains("#[inline(never)]fnhelper(&self){}"));
+        assert_eq!(out.matches("out_of_line").count(), 2);
+    }
 }

@@ -461,7 +461,7 @@ fn inline_when_dispatched(attrs: &[TokenTree]) -> TokenStream {
 /// The generic parameters at the start of `tokens` (`<const B: usize, …>`, without the
 /// brackets), their names, and the index of the token after them: all empty and 0 without
 /// any; `None` unless every parameter is a `const` one.
-fn const_generics(tokens: &[TokenTree]) -> Option<(TokenStream, Vec<Ident>, usize)> {
+pub(super) fn const_generics(tokens: &[TokenTree]) -> Option<(TokenStream, Vec<Ident>, usize)> {
     let is_punct = |t: &TokenTree, c: char| matches!(t, TokenTree::Punct(p) if p.as_char() == c);
     if !tokens.first().is_some_and(|t| is_punct(t, '<')) {
         return Some((TokenStream::new(), Vec::new(), 0));
@@ -484,7 +484,7 @@ fn const_generics(tokens: &[TokenTree]) -> Option<(TokenStream, Vec<Ident>, usiz
 
 /// The argument names after a `&self` receiver (`None` without one, or for a pattern
 /// argument).
-fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
+pub(super) fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
     let mut parts = split_commas(args).into_iter();
     let receiver = parts.next()?;
     let is_self = matches!(receiver.as_slice(), [TokenTree::Punct(a), TokenTree::Ident(s)] if a.as_char() == '&' && s == "self");
@@ -562,7 +562,8 @@ fn size(stream: &TokenStream) -> usize {
         .sum()
 }
 
-fn contains_ident(stream: &TokenStream, name: &str) -> bool {
+/// Whether `stream` has the identifier `name` anywhere, groups' contents included.
+pub(crate) fn contains_ident(stream: &TokenStream, name: &str) -> bool {
     stream.clone().into_iter().any(|t| match t {
         TokenTree::Ident(i) => i == name,
         TokenTree::Group(g) => contains_ident(&g.stream(), name),
@@ -749,12 +750,14 @@ mod tests {
             assert!(!code.contains("has_avx512"), "{}", builder.options().no_std);
             assert!(!code.contains("target_feature(enable"));
             assert!(!code.contains("unsafe"));
-            // Not dispatched: the batch function holds its body and stays out of line.
+            // Not dispatched: the batch function's body stays out of line, in an `extern "C"`
+            // part (see `batch::out_of_line`).
             let before = &code[..code
-                .find("pub fn inverse_dynamics_batch<")
-                .expect("a batch function")];
+                .find("extern \"C\" fn inverse_dynamics_batch_out_of_line<")
+                .expect("a batch function's body")];
             let attrs = &before[before.rfind("///").expect("its doc")..];
             assert!(attrs.contains("#[inline(never)]") && !attrs.contains("cfg_attr"));
+            assert!(code.contains("self.inverse_dynamics_batch_out_of_line::<B>(q, qd, qdd)"));
         }
     }
 }

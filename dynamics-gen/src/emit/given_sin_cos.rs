@@ -11,7 +11,11 @@
 //! vectors for every angle that is a coordinate itself, and still computes the others (a
 //! joint offset folded in, `q_i + a`, or a mimic joint's `m q_j + a`) from `q`. The struct
 //! gets `sin_cos(q)`, the sines and cosines of every entry of `q` by the same helper, so
-//! that `f_from_sin_cos(q, &s, &c, …)` with `(s, c) = sin_cos(q)` is `f(q, …)`: a caller
+//! that `f_from_sin_cos(q, &s, &c, …)` with `(s, c) = sin_cos(q)` is `f(q, …)`, bit for bit
+//! where `sin_cos` runs the same copy as `f` under the CPU dispatch (it is dispatched by the
+//! same rule, several angles at once, so a robot of two coordinates whose functions take
+//! more angles, through mimic joints, can differ by the rounding of a fused polynomial in a
+//! sine or cosine): a caller
 //! who needs several functions at one state (the mass matrix, the bias and a Jacobian in a
 //! controller's step) computes the sines and cosines once, and one who has them already
 //! (from a previous step's angle-addition update, an encoder that gives them) skips them.
@@ -130,22 +134,18 @@ fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
     };
     // A body split into nested `extern "C"` parts (the largest trees) is left alone: its
     // parts cannot see the new arguments.
-    if contains_extern(&body.stream()) {
+    if super::dispatch::contains_ident(&body.stream(), "extern") {
         return None;
     }
     let q_arg = quote!(q: &#q_ty).to_string();
-    let args_text: Vec<String> = super::dispatch::split_commas(args.stream())
+    let parts = super::dispatch::split_commas(args.stream());
+    let qi = parts
         .iter()
-        .map(|a| a.iter().cloned().collect::<TokenStream>().to_string())
-        .collect();
-    let qi = args_text.iter().position(|a| *a == q_arg)?;
+        .position(|a| a.iter().cloned().collect::<TokenStream>().to_string() == q_arg)?;
     let new_body = unbind_unused(given(body.stream())?);
     // The arguments with `sin_q`, `cos_q` after `q`.
     let mut new_args = TokenStream::new();
-    for (k, a) in super::dispatch::split_commas(args.stream())
-        .into_iter()
-        .enumerate()
-    {
+    for (k, a) in parts.into_iter().enumerate() {
         new_args.extend(a);
         new_args.extend(quote!(,));
         if k == qi {
@@ -168,15 +168,6 @@ fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
         pub fn #vname(#new_args) #ret {
             #new_body
         }
-    })
-}
-
-/// Whether `stream` has the keyword `extern` anywhere.
-fn contains_extern(stream: &TokenStream) -> bool {
-    stream.clone().into_iter().any(|t| match t {
-        TokenTree::Ident(i) => i == "extern",
-        TokenTree::Group(g) => contains_extern(&g.stream()),
-        _ => false,
     })
 }
 

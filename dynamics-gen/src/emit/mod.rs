@@ -558,6 +558,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         dispatch::apply(impl_block, options.scalar)
     };
+    let impl_block = batch::out_of_line(impl_block);
     let impl_block = match &runtime {
         None => impl_block,
         Some(runtime) => {
