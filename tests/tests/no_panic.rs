@@ -558,7 +558,10 @@ mod release {
                     panic!("a panic path in a batch body: {}", path.join(" -> "));
                 }
             }
-            eprintln!("{} out-of-line batch bodies, no panic path", out_of_line.len());
+            eprintln!(
+                "{} out-of-line batch bodies, no panic path",
+                out_of_line.len()
+            );
             if cfg!(target_feature = "avx512f") {
                 // Compiled for AVX-512 (`-C target-cpu=native` on such a CPU): no dispatch,
                 // no copies; the wrappers above checked the only code there is.

@@ -426,7 +426,9 @@ mod tests {
             "#[inline(never)]#[allow(improper_ctypes_definitions)]extern\"C\"fnmass_matrix_batch_out_of_line<constB:usize>(&self,q:&[V;B])->[M;B]{letx=q;body(x)}"
         ), "{out}");
         // Not out of line, not a batch function: unchanged.
-        assert!(out.contains("#[inline]pubfngravity_batch<constB:usize>(&self,q:&[V;B])->[V;B]{per_state(q)}"));
+        assert!(out.contains(
+            "#[inline]pubfngravity_batch<constB:usize>(&self,q:&[V;B])->[V;B]{per_state(q)}"
+        ));
         assert!(out.contains("#[inline(never)]fnhelper(&self){}"));
         assert_eq!(out.matches("out_of_line").count(), 2);
     }
