@@ -45,7 +45,12 @@ const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_10
 /// with `sin_cos_variants_differ` (`tests/sin_cos_variants.rs`): a chain with its derivative
 /// functions, a floating tree, f32 `no_std`, and mimic joints (whose angles with a
 /// multiplier or an offset the variants still compute from `q`).
-const SIN_COS: &[&str] = &["urdf_panda", "tree_solo12", "shipped_ur5_f32_no_std"];
+const SIN_COS: &[&str] = &[
+    "urdf_panda",
+    "tree_solo12",
+    "shipped_ur5_f32_no_std",
+    "mimic_301_f64",
+];
 
 /// The cases generated a second time with run-time parameters, as modules `runtime_<case>`:
 /// a chain, a floating tree with its derivative functions, f32 `no_std`, and the

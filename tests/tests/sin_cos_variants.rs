@@ -3,40 +3,40 @@
 //! gravity, forward dynamics and kinetic energy of the Panda (with its derivative functions),
 //! Solo-12 (a floating tree), an f32 `no_std` UR5 and a chain with mimic joints (whose angles
 //! with a multiplier or an offset the variants compute from `q`), at 256 random states each.
-//! Bit for bit where `sin_cos` is dispatched alike: both take the same sines and cosines and
-//! run the same operations, and a variant is dispatched exactly when its function is. The
-//! helper is dispatched by the rule every function is (several angles at once, or a large
-//! body), so on the mimic chain (two coordinates: `sin_cos` takes two angles and stays
-//! portable, while its functions take four and run their AVX-512 or AVX2 copy) the sines and
-//! cosines can differ by the rounding of the fused polynomial: there the results must agree
-//! to 1e-14 relative.
+//! Bit for bit: both take the same sines and cosines and run the same operations, and
+//! `sin_cos`, the functions that have a variant and the variants are dispatched together or
+//! not at all (the mimic chain's `sin_cos` takes two angles and its functions four: alone, the
+//! helper would stay portable while they run their AVX-512 or AVX2 copy, whose fused
+//! polynomial rounds some sines differently).
 
 #![allow(missing_docs)]
 
-use dynamics_tests::generated::{shipped_ur5_f32_no_std, tree_solo12, urdf_panda};
+use dynamics_tests::generated::{mimic_301_f64, shipped_ur5_f32_no_std, tree_solo12, urdf_panda};
 
 #[test]
 fn variants_fed_sin_cos_give_the_functions_bits() {
     type Differ = fn(&[f64], &[f64], &[f64]) -> (usize, usize, f64);
-    // (name, helper, dimensions, whether the bits must be equal).
-    let cases: [(&str, Differ, (usize, usize), bool); 3] = [
+    // (name, helper, dimensions).
+    let cases: [(&str, Differ, (usize, usize)); 4] = [
         (
             "urdf_panda",
             urdf_panda::sin_cos_variants_differ,
             urdf_panda::SIN_COS_DIMS,
-            true,
         ),
         (
             "tree_solo12",
             tree_solo12::sin_cos_variants_differ,
             tree_solo12::SIN_COS_DIMS,
-            true,
         ),
         (
             "shipped_ur5_f32_no_std",
             shipped_ur5_f32_no_std::sin_cos_variants_differ,
             shipped_ur5_f32_no_std::SIN_COS_DIMS,
-            true,
+        ),
+        (
+            "mimic_301_f64",
+            mimic_301_f64::sin_cos_variants_differ,
+            mimic_301_f64::SIN_COS_DIMS,
         ),
     ];
     // Seeded uniform numbers in [−1, 1).
@@ -47,7 +47,7 @@ fn variants_fed_sin_cos_give_the_functions_bits() {
             .wrapping_add(1442695040888963407);
         (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
-    for (name, differ, (nq, nv), bits) in cases {
+    for (name, differ, (nq, nv)) in cases {
         let (mut compared, mut differing, mut worst) = (0, 0, 0.0f64);
         for _ in 0..256 {
             let q: Vec<f64> = (0..nq).map(|_| 3.0 * uniform()).collect();
@@ -59,16 +59,9 @@ fn variants_fed_sin_cos_give_the_functions_bits() {
             worst = worst.max(w);
         }
         println!("{name}: {differing} of {compared} values differ (largest relative difference {worst:e})");
-        if bits {
-            assert_eq!(
-                differing, 0,
-                "{name}: the variants fed sin_cos(q) differ from the functions (largest relative difference {worst:e})"
-            );
-        } else {
-            assert!(
-                worst <= 1e-14,
-                "{name}: the variants fed sin_cos(q) differ from the functions by {worst:e} relative"
-            );
-        }
+        assert_eq!(
+            differing, 0,
+            "{name}: the variants fed sin_cos(q) differ from the functions (largest relative difference {worst:e})"
+        );
     }
 }

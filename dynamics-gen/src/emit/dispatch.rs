@@ -200,25 +200,40 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
 fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> TokenStream {
     let items = impl_items(stream);
     let mut sigs: Vec<Option<Signature>> = items.iter().map(|i| signature(i, scalar)).collect();
+    // With the variants, `sin_cos`, the functions that have one and the variants are
+    // dispatched together or not at all, so that a variant fed `sin_cos(q)` gives its
+    // function's bits on every CPU (a sine is fused in a dispatched copy, not in the
+    // portable one).
+    let names: Vec<Option<String>> = items.iter().map(|i| fn_name(i)).collect();
+    let bases: Vec<&str> = names
+        .iter()
+        .flatten()
+        .filter_map(|n| n.strip_suffix(super::given_sin_cos::SUFFIX))
+        .collect();
+    if !bases.is_empty() {
+        let in_group = |n: &Option<String>| {
+            n.as_deref().is_some_and(|n| {
+                n == "sin_cos" || n.ends_with(super::given_sin_cos::SUFFIX) || bases.contains(&n)
+            })
+        };
+        let any = names
+            .iter()
+            .zip(&sigs)
+            .any(|(n, s)| in_group(n) && s.is_some());
+        if any {
+            for ((item, n), sig) in items.iter().zip(&names).zip(sigs.iter_mut()) {
+                if in_group(n) && sig.is_none() {
+                    *sig = signature_of(item, scalar, true);
+                }
+            }
+        }
+    }
     let singles: Vec<String> = sigs
         .iter()
         .flatten()
         .filter(|s| s.generic_names.is_empty())
         .map(|s| s.name.to_string())
         .collect();
-    // A `*_from_sin_cos` variant follows its function whatever its own size (it may have
-    // no sines and cosines left to compute).
-    for (item, sig) in items.iter().zip(sigs.iter_mut()) {
-        if sig.is_none() {
-            let forced = signature_of(item, scalar, true).filter(|s| {
-                s.name
-                    .to_string()
-                    .strip_suffix(super::given_sin_cos::SUFFIX)
-                    .is_some_and(|f| singles.iter().any(|n| n == f))
-            });
-            *sig = forced;
-        }
-    }
     let mut out = TokenStream::new();
     for (item, sig) in items.into_iter().zip(sigs) {
         let follows = |s: &Signature| {
@@ -265,6 +280,17 @@ pub(crate) fn impl_items(stream: TokenStream) -> Vec<Vec<TokenTree>> {
         items.push(item);
     }
     items
+}
+
+/// The name of the function `item`, if it is one.
+fn fn_name(item: &[TokenTree]) -> Option<String> {
+    let f = item
+        .iter()
+        .position(|t| matches!(t, TokenTree::Ident(i) if i == "fn"))?;
+    match item.get(f + 1)? {
+        TokenTree::Ident(name) => Some(name.to_string()),
+        _ => None,
+    }
 }
 
 /// What [`dispatched`] needs of an eligible function.
@@ -617,8 +643,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                             && comma.as_char() == ','
                             && gt.as_char() == '>' =>
                     {
-                        // One angle: nothing to widen (and its pattern has no `..`).
-                        Some(k.clone()).filter(|k| k.to_string() != "1")
+                        Some(k.clone())
                     }
                     _ => None,
                 };
@@ -631,6 +656,14 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                     _ => None,
                 };
                 match (k, args) {
+                    // One angle: nothing to widen (and its pattern has no `..`), but fused
+                    // when `WIDE`, as the angles of every other batch are there (and those of
+                    // the batch functions), so that an angle's sine is the same bits
+                    // whichever call computes it.
+                    (Some(k), Some(args)) if k.to_string() == "1" => {
+                        tokens.next();
+                        out.extend(quote!(sin_cos_n::<1, 1, WIDE>(#args, 1)));
+                    }
                     (Some(k), Some(args)) => {
                         tokens.next();
                         used.sin_cos = true;
@@ -670,6 +703,44 @@ fn after_self_path(out: &[TokenTree]) -> bool {
 
 #[cfg(test)]
 mod tests {
+    /// `sin_cos`, every function with a `_from_sin_cos` variant and the variants: all
+    /// dispatched or none, on a robot whose functions are (the UR5) and on a small one (the
+    /// pendulum: two angles, so that `sin_cos` alone would not be).
+    #[test]
+    fn sin_cos_and_the_variants_are_dispatched_with_their_functions() {
+        for robot in ["ur5", "pendulum"] {
+            let code = crate::Builder::new(robot)
+                .sin_cos_variants(true)
+                .generate()
+                .expect("generates");
+            let mut group = vec!["sin_cos".to_string()];
+            for (k, _) in code.match_indices("_from_sin_cos(") {
+                let before = &code[..k];
+                let start = before
+                    .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .map_or(0, |s| s + 1);
+                if before[..start].ends_with("fn ") {
+                    group.push(before[start..].to_string());
+                    group.push(format!("{}_from_sin_cos", &before[start..]));
+                }
+            }
+            assert!(group.len() >= 11, "{robot}: {group:?}");
+            let dispatched = code.contains("fn sin_cos_avx512(");
+            assert!(dispatched || robot == "pendulum");
+            for name in &group {
+                assert_eq!(
+                    code.contains(&format!("fn {name}_avx512(")),
+                    dispatched,
+                    "{robot}: {name}"
+                );
+            }
+            println!(
+                "{robot}: {} functions, dispatched: {dispatched}",
+                group.len()
+            );
+        }
+    }
+
     #[test]
     fn std_code_has_an_avx512_copy_and_no_std_code_none() {
         let std = crate::Builder::new("ur5").generate().expect("generates");

@@ -11,17 +11,14 @@
 //! vectors for every angle that is a coordinate itself, and still computes the others (a
 //! joint offset folded in, `q_i + a`, or a mimic joint's `m q_j + a`) from `q`. The struct
 //! gets `sin_cos(q)`, the sines and cosines of every entry of `q` by the same helper, so
-//! that `f_from_sin_cos(q, &s, &c, …)` with `(s, c) = sin_cos(q)` is `f(q, …)`, bit for bit
-//! where `sin_cos` runs the same copy as `f` under the CPU dispatch (it is dispatched by the
-//! same rule, several angles at once, so a robot of two coordinates whose functions take
-//! more angles, through mimic joints, can differ by the rounding of a fused polynomial in a
-//! sine or cosine): a caller
-//! who needs several functions at one state (the mass matrix, the bias and a Jacobian in a
+//! that `f_from_sin_cos(q, &s, &c, …)` with `(s, c) = sin_cos(q)` is `f(q, …)` bit for bit
+//! (the dispatch takes `sin_cos`, the functions that have a variant and the variants
+//! together or not at all, so that their sines are fused alike): a caller who needs several functions at one state (the mass matrix, the bias and a Jacobian in a
 //! controller's step) computes the sines and cosines once, and one who has them already
 //! (from a previous step's angle-addition update, an encoder that gives them) skips them.
 //!
-//! A rewrite of the impl block's tokens, before [`super::dispatch`], which then dispatches a
-//! variant exactly when it dispatches its function (so that the two fuse alike). Left alone:
+//! A rewrite of the impl block's tokens, before [`super::dispatch`], which then dispatches
+//! the variants, their functions and `sin_cos` together or not at all. Left alone:
 //! the functions with generic parameters (the batch functions, whose sines and cosines are
 //! per state, and `constrained_forward_dynamics`) and bodies split into `extern "C"` parts
 //! (the largest trees' derivatives).
