@@ -69,8 +69,11 @@
 //! (`mul_add_lanes`, `joint_sin_cos_rows`) are fused as the scalar ones are. A batch function
 //! `X_batch` is dispatched exactly when `X` is, so that a state's result is `X`'s bit for bit
 //! on every CPU. A batch function comes `#[inline(never)]` (it holds the whole `B`-wide body
-//! wherever it is not dispatched); its dispatching wrapper is `#[inline]` under the `cfg`
-//! above and keeps `#[inline(never)]` outside it.
+//! wherever it is not dispatched); its dispatching wrapper is `#[inline]`, and where no copy
+//! runs it calls `f_portable::<B>`, the body inlined under the `cfg` above and an
+//! out-of-line `extern "C"` function outside it (`-C target-cpu` with AVX-512), so that a
+//! caller knows it cannot unwind (as [`super::batch::out_of_line`] does for the batch
+//! functions the dispatch leaves alone).
 //!
 //! Left alone: functions with type or lifetime parameters, bodies split into `extern "C"`
 //! parts (the largest trees), whose nested functions cannot see `WIDE`, and bodies of fewer
@@ -383,7 +386,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
         ret,
         body,
     } = sig;
-    let attrs = inline_when_dispatched(&item[..p]);
+    let (attrs, out_of_line) = without_inline_never(&item[..p]);
     let fast = format_ident!("{}_avx512", name);
     let mid = format_ident!("{}_avx2", name);
     let body_fn = format_ident!("{}_body", name);
@@ -415,6 +418,42 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
         quote!(, #generics)
     };
     let vis = public.then(|| quote!(pub));
+    // Where no copy runs: the body compiled for the target. A batch function's (which holds
+    // a `B`-wide body, out of line) is `X_portable`: inlined into the wrapper where the
+    // dispatch exists, and an out-of-line `extern "C"` function where it does not (`-C
+    // target-cpu` with AVX-512), so that a caller knows it cannot unwind without seeing it
+    // (see `batch::out_of_line`).
+    let (fallback, portable) = if out_of_line {
+        let portable = format_ident!("{}_portable", name);
+        let cond = dispatch_cond();
+        let doc = format!(
+            " [`Self::{name}`] where no copy runs: the body compiled for the target, \
+             out of line and `extern \"C\"` where the target has AVX-512."
+        );
+        (
+            quote!(self.#portable #fast_turbofish (#(#arg_names),*)),
+            quote! {
+                #[doc = #doc]
+                #[cfg(#cond)]
+                #[inline(always)]
+                fn #portable #fast_generics (#args) #ret {
+                    self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
+                }
+                #[doc = #doc]
+                #[cfg(not(#cond))]
+                #[inline(never)]
+                #[allow(improper_ctypes_definitions)]
+                extern "C" fn #portable #fast_generics (#args) #ret {
+                    self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
+                }
+            },
+        )
+    } else {
+        (
+            quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)),
+            quote!(),
+        )
+    };
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -431,8 +470,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
                     }
                 }
             }
-            self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
+            #fallback
         }
+
+        #portable
 
         #[doc = #fast_doc]
         #cfg
@@ -459,29 +500,27 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
 }
 
 /// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
-/// [`super::batch`]) made `#[inline]` where the dispatch exists: there the function is only
-/// the small wrapper, and it stays out of line elsewhere, where it holds the body.
-fn inline_when_dispatched(attrs: &[TokenTree]) -> TokenStream {
+/// [`super::batch`]) made `#[inline]`, and whether there was one: the dispatching wrapper is
+/// small, and the body stays out of line in the copies and in `X_portable` ([`dispatched`]).
+fn without_inline_never(attrs: &[TokenTree]) -> (TokenStream, bool) {
     let never = quote!(inline(never)).to_string();
-    let cond = dispatch_cond();
     let mut out = TokenStream::new();
+    let mut found = false;
     let mut k = 0;
     while k < attrs.len() {
         let is_never = matches!(&attrs[k], TokenTree::Punct(p) if p.as_char() == '#')
             && matches!(attrs.get(k + 1), Some(TokenTree::Group(g))
                 if g.delimiter() == Delimiter::Bracket && g.stream().to_string() == never);
         if is_never {
-            out.extend(quote! {
-                #[cfg_attr(#cond, inline)]
-                #[cfg_attr(not(#cond), inline(never))]
-            });
+            out.extend(quote!(#[inline]));
+            found = true;
             k += 2;
         } else {
             out.extend([attrs[k].clone()]);
             k += 1;
         }
     }
-    out
+    (out, found)
 }
 
 /// The generic parameters at the start of `tokens` (`<const B: usize, …>`, without the
@@ -779,17 +818,32 @@ mod tests {
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
         assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
         assert!(!batch.contains("Self::mul_add_lanes("));
-        // Its wrapper is inlined where the dispatch exists and kept out of line elsewhere
-        // (where it holds the whole body); a single-state function stays `#[inline]`.
+        // Its wrapper is inlined; where no copy runs it calls `_portable`, inlined where the
+        // dispatch exists and an out-of-line `extern "C"` function elsewhere. A single-state
+        // function stays `#[inline]`.
         let before = &std[..std
             .find("pub fn inverse_dynamics_batch<")
             .expect("a batch wrapper")];
-        let attrs: String = before[before.rfind("///").expect("its doc")..]
-            .split_whitespace()
-            .collect();
-        assert!(attrs.contains(
-            r#"#[cfg_attr(all(target_arch="x86_64",not(target_feature="avx512f")),inline)]#[cfg_attr(not(all(target_arch="x86_64",not(target_feature="avx512f"))),inline(never))]"#
-        ), "{attrs}");
+        let attrs = &before[before.rfind("///").expect("its doc")..];
+        assert!(
+            attrs.contains("#[inline]\n") && !attrs.contains("never"),
+            "{attrs}"
+        );
+        assert!(std.contains("self.inverse_dynamics_batch_portable::<B>(q, qd, qdd)"));
+        assert_eq!(
+            std.matches("fn inverse_dynamics_batch_portable<").count(),
+            2
+        );
+        let k = std
+            .find("extern \"C\" fn inverse_dynamics_batch_portable<")
+            .expect("the out-of-line fallback");
+        let attrs: String = std[k - 300..k].split_whitespace().collect();
+        assert!(
+            attrs.ends_with(
+                r#"#[cfg(not(all(target_arch="x86_64",not(target_feature="avx512f"))))]#[inline(never)]#[allow(improper_ctypes_definitions)]"#
+            ),
+            "{attrs}"
+        );
         let before = &std[..std.find("pub fn inverse_dynamics(").expect("a function")];
         let attrs = &before[before.rfind("///").expect("its doc")..];
         assert!(
