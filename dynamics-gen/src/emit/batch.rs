@@ -28,7 +28,7 @@
 use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
 use crate::expr::{ExprGraph, ExprId};
 use crate::options::Options;
-use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
+use proc_macro2::{Delimiter, Ident, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
 /// The most entries of a vectorised batch function's result: up to 8 × 8 the runtime's
@@ -228,40 +228,24 @@ pub fn batch_functions(
 /// after unrelated changes had moved the partition). An `extern "C"` function cannot unwind
 /// by its ABI, and its callers know it from its declaration alone, as for the dispatched
 /// copies and the runtime's `Lanes::scatter`. Where the dispatch copies a batch function, its
-/// wrapper is `#[inline]` and calls `extern "C"` copies already (the `-C target-cpu` builds
-/// that have AVX-512, whose wrapper keeps the body out of line, are not split: the attribute
-/// there is a `cfg_attr`).
+/// wrapper is `#[inline]` already and calls `extern "C"` functions: the copies, or where none
+/// runs `X_batch_portable` ([`super::dispatch`]).
 pub(super) fn out_of_line(impl_block: TokenStream) -> TokenStream {
-    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
-    let Some((pos, body)) = tokens.iter().enumerate().find_map(|(k, t)| match t {
-        TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((k, g.clone())),
-        _ => None,
-    }) else {
-        return tokens.into_iter().collect();
-    };
-    let mut items = TokenStream::new();
-    for item in super::dispatch::impl_items(body.stream()) {
-        match split_out_of_line(&item) {
-            Some(split) => items.extend(split),
-            None => items.extend(item),
+    super::dispatch::with_impl_items(impl_block, |body| {
+        let mut items = TokenStream::new();
+        for item in super::dispatch::impl_items(body) {
+            match split_out_of_line(&item) {
+                Some(split) => items.extend(split),
+                None => items.extend(item),
+            }
         }
-    }
-    let mut group = Group::new(Delimiter::Brace, items);
-    group.set_span(body.span());
-    tokens[pos] = TokenTree::Group(group);
-    tokens.into_iter().collect()
+        Some(items)
+    })
 }
 
 /// The two functions of [`out_of_line`] for `item`, when it is an out-of-line batch function.
 fn split_out_of_line(item: &[TokenTree]) -> Option<TokenStream> {
-    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
-    let f = item.iter().position(|t| is_ident(t, "fn"))?;
-    if f == 0 || !is_ident(&item[f - 1], "pub") {
-        return None;
-    }
-    let TokenTree::Ident(name) = item.get(f + 1)? else {
-        return None;
-    };
+    let (f, name) = super::dispatch::public_fn(item)?;
     if !name.to_string().ends_with("_batch") {
         return None;
     }

@@ -117,6 +117,22 @@ struct Used {
 /// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
 /// the two helpers when any was; unchanged when none is.
 pub fn apply(impl_block: TokenStream, scalar: Scalar) -> TokenStream {
+    with_impl_items(impl_block, |body| {
+        let mut used = Used::default();
+        let items = dispatch_items(body, &mut used, scalar);
+        used.any.then(|| {
+            let helpers = helpers(scalar, &used);
+            quote!(#items #helpers)
+        })
+    })
+}
+
+/// `impl_block` (`attrs impl Name { items }`) with its items replaced by `f(items)`;
+/// unchanged where `f` gives `None`, or without a body.
+pub(crate) fn with_impl_items(
+    impl_block: TokenStream,
+    f: impl FnOnce(TokenStream) -> Option<TokenStream>,
+) -> TokenStream {
     let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
     let Some((pos, body)) = tokens.iter().enumerate().find_map(|(k, t)| match t {
         TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((k, g.clone())),
@@ -124,16 +140,27 @@ pub fn apply(impl_block: TokenStream, scalar: Scalar) -> TokenStream {
     }) else {
         return tokens.into_iter().collect();
     };
-    let mut used = Used::default();
-    let items = dispatch_items(body.stream(), &mut used, scalar);
-    if !used.any {
+    let Some(items) = f(body.stream()) else {
         return tokens.into_iter().collect();
-    }
-    let helpers = helpers(scalar, &used);
-    let mut group = Group::new(Delimiter::Brace, quote!(#items #helpers));
+    };
+    let mut group = Group::new(Delimiter::Brace, items);
     group.set_span(body.span());
     tokens[pos] = TokenTree::Group(group);
     tokens.into_iter().collect()
+}
+
+/// The index of `fn` and the name of the public function `item` (`… pub fn name …`), or
+/// `None` when it is not one.
+pub(crate) fn public_fn(item: &[TokenTree]) -> Option<(usize, Ident)> {
+    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
+    let f = item.iter().position(|t| is_ident(t, "fn"))?;
+    if f == 0 || !is_ident(&item[f - 1], "pub") {
+        return None;
+    }
+    match item.get(f + 1)? {
+        TokenTree::Ident(name) => Some((f, name.clone())),
+        _ => None,
+    }
 }
 
 /// The private helpers the dispatched functions call.

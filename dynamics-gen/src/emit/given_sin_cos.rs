@@ -45,34 +45,22 @@ pub fn apply(
     nq: usize,
     nalgebra: &TokenStream,
 ) -> TokenStream {
-    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
-    let Some(pos) = tokens
-        .iter()
-        .position(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Brace))
-    else {
-        return tokens.into_iter().collect();
-    };
-    let TokenTree::Group(body) = &tokens[pos] else {
-        return tokens.into_iter().collect();
-    };
-    let mut out = TokenStream::new();
-    let mut any = false;
-    for item in super::dispatch::impl_items(body.stream()) {
-        let variant = variant(&item, q_ty);
-        out.extend(item);
-        if let Some(variant) = variant {
-            out.extend(variant);
-            any = true;
+    super::dispatch::with_impl_items(impl_block, |body| {
+        let mut out = TokenStream::new();
+        let mut any = false;
+        for item in super::dispatch::impl_items(body) {
+            let variant = variant(&item, q_ty);
+            out.extend(item);
+            if let Some(variant) = variant {
+                out.extend(variant);
+                any = true;
+            }
         }
-    }
-    if !any {
-        return tokens.into_iter().collect();
-    }
-    out.extend(helper(q_ty, nq, nalgebra));
-    let mut group = Group::new(Delimiter::Brace, out);
-    group.set_span(body.span());
-    tokens[pos] = TokenTree::Group(group);
-    tokens.into_iter().collect()
+        any.then(|| {
+            out.extend(helper(q_ty, nq, nalgebra));
+            out
+        })
+    })
 }
 
 /// `sin_cos(q)`: the sines and cosines of every entry of `q` by the `joint_sin_cos` helper.
@@ -112,14 +100,7 @@ fn helper(q_ty: &TokenStream, nq: usize, na: &TokenStream) -> TokenStream {
 /// `None` when it is not eligible: no `q` argument of type `q_ty`, or no batch of sines and
 /// cosines with an angle that is a coordinate itself.
 fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
-    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
-    let f = item.iter().position(|t| is_ident(t, "fn"))?;
-    if f == 0 || !is_ident(&item[f - 1], "pub") {
-        return None;
-    }
-    let TokenTree::Ident(name) = item.get(f + 1)? else {
-        return None;
-    };
+    let (f, name) = super::dispatch::public_fn(item)?;
     let TokenTree::Group(args) = item.get(f + 2)? else {
         return None; // generic: the batch functions and `constrained_forward_dynamics`
     };
