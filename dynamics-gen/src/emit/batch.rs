@@ -28,7 +28,7 @@
 use super::function::{Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
 use crate::expr::{ExprGraph, ExprId};
 use crate::options::Options;
-use proc_macro2::{Delimiter, Ident, Span, TokenStream, TokenTree};
+use proc_macro2::{Ident, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 
 /// The most entries of a vectorised batch function's result: up to 8 × 8 the runtime's
@@ -249,23 +249,8 @@ fn split_out_of_line(item: &[TokenTree]) -> Option<TokenStream> {
     if !name.to_string().ends_with("_batch") {
         return None;
     }
-    // The attributes, `#[…]` each: all but `#[inline(never)]` stay on the public function.
-    let never = quote!(inline(never)).to_string();
-    let (mut attrs, mut never_found) = (TokenStream::new(), false);
-    for pair in item[..f - 1].chunks(2) {
-        match pair {
-            [TokenTree::Punct(hash), TokenTree::Group(g)]
-                if hash.as_char() == '#' && g.delimiter() == Delimiter::Bracket =>
-            {
-                if g.stream().to_string() == never {
-                    never_found = true;
-                } else {
-                    attrs.extend(pair.iter().cloned());
-                }
-            }
-            _ => return None,
-        }
-    }
+    // The attributes stay on the public function, `#[inline(never)]` made `#[inline]`.
+    let (attrs, never_found) = super::dispatch::without_inline_never(&item[..f - 1]);
     if !never_found {
         return None;
     }
@@ -286,7 +271,6 @@ fn split_out_of_line(item: &[TokenTree]) -> Option<TokenStream> {
     let (args, body) = (args.stream(), body.stream());
     Some(quote! {
         #attrs
-        #[inline]
         pub fn #name<#generics>(#args) #ret {
             self.#inner::<#(#generic_names),*>(#(#names),*)
         }
@@ -404,7 +388,7 @@ mod tests {
         };
         let out = out_of_line(block).to_string().replace(' ', "");
         assert!(out.contains(
-            "Themassmatrixforabatch.\"]#[must_use]#[inline]pubfnmass_matrix_batch<constB:usize>(&self,q:&[V;B])->[M;B]{self.mass_matrix_batch_out_of_line::<B>(q)}"
+            "Themassmatrixforabatch.\"]#[inline]#[must_use]pubfnmass_matrix_batch<constB:usize>(&self,q:&[V;B])->[M;B]{self.mass_matrix_batch_out_of_line::<B>(q)}"
         ), "{out}");
         assert!(out.contains(
             "#[inline(never)]#[allow(improper_ctypes_definitions)]extern\"C\"fnmass_matrix_batch_out_of_line<constB:usize>(&self,q:&[V;B])->[M;B]{letx=q;body(x)}"

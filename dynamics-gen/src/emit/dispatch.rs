@@ -152,15 +152,9 @@ pub(crate) fn with_impl_items(
 /// The index of `fn` and the name of the public function `item` (`… pub fn name …`), or
 /// `None` when it is not one.
 pub(crate) fn public_fn(item: &[TokenTree]) -> Option<(usize, Ident)> {
-    let is_ident = |t: &TokenTree, s: &str| matches!(t, TokenTree::Ident(i) if i == s);
-    let f = item.iter().position(|t| is_ident(t, "fn"))?;
-    if f == 0 || !is_ident(&item[f - 1], "pub") {
-        return None;
-    }
-    match item.get(f + 1)? {
-        TokenTree::Ident(name) => Some((f, name.clone())),
-        _ => None,
-    }
+    let (f, name) = fn_name(item)?;
+    matches!(item.get(f.checked_sub(1)?), Some(TokenTree::Ident(i)) if i == "pub")
+        .then_some((f, name))
 }
 
 /// The private helpers the dispatched functions call.
@@ -234,7 +228,10 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
     // dispatched together or not at all, so that a variant fed `sin_cos(q)` gives its
     // function's bits on every CPU (a sine is fused in a dispatched copy, not in the
     // portable one).
-    let names: Vec<Option<String>> = items.iter().map(|i| fn_name(i)).collect();
+    let names: Vec<Option<String>> = items
+        .iter()
+        .map(|i| fn_name(i).map(|(_, n)| n.to_string()))
+        .collect();
     let bases: Vec<&str> = names
         .iter()
         .flatten()
@@ -312,13 +309,13 @@ pub(crate) fn impl_items(stream: TokenStream) -> Vec<Vec<TokenTree>> {
     items
 }
 
-/// The name of the function `item`, if it is one.
-fn fn_name(item: &[TokenTree]) -> Option<String> {
+/// The index of `fn` and the name of the function `item`, if it is one.
+fn fn_name(item: &[TokenTree]) -> Option<(usize, Ident)> {
     let f = item
         .iter()
         .position(|t| matches!(t, TokenTree::Ident(i) if i == "fn"))?;
     match item.get(f + 1)? {
-        TokenTree::Ident(name) => Some(name.to_string()),
+        TokenTree::Ident(name) => Some((f, name.clone())),
         _ => None,
     }
 }
@@ -450,6 +447,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
     // dispatch exists, and an out-of-line `extern "C"` function where it does not (`-C
     // target-cpu` with AVX-512), so that a caller knows it cannot unwind without seeing it
     // (see `batch::out_of_line`).
+    let portable_body = quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*));
     let (fallback, portable) = if out_of_line {
         let portable = format_ident!("{}_portable", name);
         let cond = dispatch_cond();
@@ -464,22 +462,19 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
                 #[cfg(#cond)]
                 #[inline(always)]
                 fn #portable #fast_generics (#args) #ret {
-                    self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
+                    #portable_body
                 }
                 #[doc = #doc]
                 #[cfg(not(#cond))]
                 #[inline(never)]
                 #[allow(improper_ctypes_definitions)]
                 extern "C" fn #portable #fast_generics (#args) #ret {
-                    self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)
+                    #portable_body
                 }
             },
         )
     } else {
-        (
-            quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*)),
-            quote!(),
-        )
+        (portable_body, quote!())
     };
     quote! {
         #attrs
@@ -529,7 +524,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
 /// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
 /// [`super::batch`]) made `#[inline]`, and whether there was one: the dispatching wrapper is
 /// small, and the body stays out of line in the copies and in `X_portable` ([`dispatched`]).
-fn without_inline_never(attrs: &[TokenTree]) -> (TokenStream, bool) {
+pub(super) fn without_inline_never(attrs: &[TokenTree]) -> (TokenStream, bool) {
     let never = quote!(inline(never)).to_string();
     let mut out = TokenStream::new();
     let mut found = false;
