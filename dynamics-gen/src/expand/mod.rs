@@ -49,6 +49,7 @@ pub mod crba;
 pub mod derivatives;
 pub mod frames;
 pub mod kinematics;
+pub mod kinetic;
 pub mod lagrangian;
 pub mod ldlt;
 pub mod mimic;
@@ -152,8 +153,9 @@ pub struct Dynamics {
     pub forward_dynamics: Vec<ExprId>,
     /// The algorithm `forward_dynamics` was expanded with.
     pub forward_route: ForwardRoute,
-    /// `K(q, ν) = ½ νᵀ M ν = Σ_i ν_i (½ M_ii ν_i + Σ_{j>i} M_ij ν_j)`, on the mass matrix's
-    /// nodes.
+    /// `K(q, ν) = ½ νᵀ M ν`: the route's own (the bodies' twists, [`kinetic`], for
+    /// Newton–Euler; the Lagrangian's `K`) or `Σ_i ν_i (½ M_ii ν_i + Σ_{j>i} M_ij ν_j)` on
+    /// the mass matrix's nodes, the cheaper.
     pub kinetic_energy: ExprId,
     /// `Ṁ(q, ν) = Σ_k ∂M/∂q_k q̇_k`: the directional derivative of `mass_matrix`'s graph
     /// along the configuration rate ([`base::configuration_rate`]), nv×nv row-major.
@@ -332,8 +334,8 @@ struct Outputs {
     bias_with_tip: Vec<ExprId>,
 }
 
-/// The outputs derived from the mass matrix (`K`, unless given, `Ṁ`, `C`, the `Lᵀ D L`
-/// factor), and the whole [`Dynamics`]; `(k, oq, nv)` the sizes.
+/// The outputs derived from the mass matrix (`K`, unless the given one is cheaper, `Ṁ`,
+/// `C`, the `Lᵀ D L` factor), and the whole [`Dynamics`]; `(k, oq, nv)` the sizes.
 fn finish(
     mut g: ExprGraph,
     method: Method,
@@ -343,8 +345,12 @@ fn finish(
     kinetic_energy: Option<ExprId>,
 ) -> Dynamics {
     let floating = oq != 0;
-    let kinetic_energy =
-        kinetic_energy.unwrap_or_else(|| self::kinetic_energy(&mut g, &o.mass_matrix, nv));
+    // The expansion's own kinetic energy, or `½ νᵀ M ν` where that is cheaper.
+    let from_mass_matrix = self::kinetic_energy(&mut g, &o.mass_matrix, nv);
+    let kinetic_energy = match kinetic_energy {
+        Some(own) => cheaper(&g, vec![own], vec![from_mass_matrix])[0],
+        None => from_mass_matrix,
+    };
     let rate = base::configuration_rate(&mut g, floating, k);
     let mass_matrix_dot = g.jvp(&o.mass_matrix, &rate);
     let coriolis_matrix = coriolis_matrix(&mut g, &o.mass_matrix, &mass_matrix_dot, floating, k);
@@ -497,6 +503,16 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         }
     }
     let by_aba = by_aba.unwrap_or_default();
+    // The kinetic energy by the bodies' twists; `finish` keeps it or `½ νᵀ M ν`, the cheaper.
+    let kinetic_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], no_gravity);
+    let kinetic = [kinetic::kinetic_energy(
+        &mut g,
+        &motions,
+        &kinetic_base,
+        base_inertia,
+        &qd[ov..],
+        &armature,
+    )];
     // Identically zero nodes (cancellations spread over a sum, such as g₁ of a robot with
     // a vertical first axis) become exact zeros, before the routes are compared. Only the
     // candidate routes are rebuilt (the losing Newton–Euler forms are dropped).
@@ -513,6 +529,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         &bias,
         &inverse_dynamics_with_tip,
         &bias_with_tip,
+        &kinetic,
     ];
     roots.extend(candidates);
     let (g, pruned) = prune_if(prune, g, &roots);
@@ -521,6 +538,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     let (mass_matrix, coriolis, gravity, inverse_dynamics, bias) =
         (next(), next(), next(), next(), next());
     let (inverse_dynamics_with_tip, bias_with_tip) = (next(), next());
+    let kinetic_energy = next().first().copied();
     let (by_ldlt, by_aba) = match route {
         None => (next(), next()),
         Some(ForwardRoute::Ldlt) => (next(), Vec::new()),
@@ -547,7 +565,14 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         inverse_dynamics_with_tip,
         bias_with_tip,
     };
-    finish(g, Method::NewtonEuler, route, (k, oq, nv), outputs, None)
+    finish(
+        g,
+        Method::NewtonEuler,
+        route,
+        (k, oq, nv),
+        outputs,
+        kinetic_energy,
+    )
 }
 
 /// The end effector's wrench `F_tip = (m, f)` (inputs [`task_space::F_TIP`], in the end

@@ -53,6 +53,29 @@ fn state(r: &dynamics_model::Robot, seed: u64, quat_scale: f64) -> (Vec<f64>, Ve
     (q, v, a)
 }
 
+/// The kinetic energy the expansion keeps (the bodies' twists where that is cheaper) is
+/// `½ νᵀ M ν`, on trees, floating bases and prismatic joints.
+#[test]
+fn kinetic_energy_is_half_v_m_v() {
+    for seed in 0..24u64 {
+        let r = random_tree(seed, spec(seed));
+        let nv = r.nv();
+        let (q, v, a) = state(&r, seed, 1.0);
+        let zeros = vec![0.0; nv];
+        let d = expand_with_route(&r, ForwardRoute::Ldlt);
+        let m = eval(&d, &d.mass_matrix, &q, &v, &a, &zeros);
+        let k = eval(&d, &[d.kinetic_energy], &q, &v, &a, &zeros)[0];
+        let expected = 0.5
+            * (0..nv)
+                .map(|i| v[i] * (0..nv).map(|j| m[i * nv + j] * v[j]).sum::<f64>())
+                .sum::<f64>();
+        assert!(
+            (k - expected).abs() <= 1e-12 * (expected.abs() + 1.0),
+            "seed {seed}: K = {k}, ½ νᵀ M ν = {expected}"
+        );
+    }
+}
+
 #[test]
 fn trees_are_consistent_on_both_routes() {
     for seed in 0..24u64 {
