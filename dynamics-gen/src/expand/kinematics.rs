@@ -35,7 +35,7 @@
 use super::base::{base_rotation, NQ_BASE, NV_BASE};
 use super::frames::{joint_frames, BodyInertia, JointFrames};
 use super::spatial::{VectorOps, V3};
-use super::{input, joint_motions, mimic, Q};
+use super::{input, joint_motions, mimic, Q, QD};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::lie::{rotation, trans_inv, translation};
 use dynamics_model::{Frame, JointKind, Robot};
@@ -207,23 +207,46 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
         Pose { r, p }
     });
-    let mut one = |frame: &Frame| {
-        let mut k = frame_kinematics(&mut g, robot, &frames, &q, &poses, base, frame, nv);
-        // The physical joints' columns onto the coordinates: each row times J.
-        for j in [&mut k.jacobian_space, &mut k.jacobian_body] {
-            *j = j
-                .chunks(nv)
-                .flat_map(|row| coupling.forces(&mut g, row))
-                .collect();
-        }
+    // The physical joints' columns onto the coordinates: each row times J.
+    let couple = |g: &mut ExprGraph, j: &[ExprId]| -> Vec<ExprId> {
+        j.chunks(nv)
+            .flat_map(|row| coupling.forces(g, row))
+            .collect()
+    };
+    let one = |g: &mut ExprGraph, frame: &Frame| {
+        let mut k = frame_kinematics(g, robot, &frames, &q, &poses, base, frame, nv);
+        k.jacobian_space = couple(g, &k.jacobian_space);
+        k.jacobian_body = couple(g, &k.jacobian_body);
         k
     };
-    let end_effector = one(&robot.end_effector);
-    let named = robot.frames.iter().map(&mut one).collect();
+    let physical = frame_kinematics(
+        &mut g,
+        robot,
+        &frames,
+        &q,
+        &poses,
+        base,
+        &robot.end_effector,
+        nv,
+    );
+    // J̇ by the twists the columns move with, on the physical joints' rates.
+    let nu: Vec<ExprId> = (0..ov + robot.n_coordinates())
+        .map(|i| g.input(input(QD, i)))
+        .collect();
+    let rates = coupling.rates(&mut g, &nu);
+    let path = robot.frame_path(&robot.end_effector);
+    let space_dot = space_jacobian_dot(&mut g, &physical.jacobian_space, &path, ov, &rates);
+    let body_dot = body_jacobian_dot(&mut g, &physical.jacobian_body, &path, ov, &rates);
+    let (space_dot, body_dot) = (couple(&mut g, &space_dot), couple(&mut g, &body_dot));
+    let end_effector = one(&mut g, &robot.end_effector);
+    let named = robot.frames.iter().map(|f| one(&mut g, f)).collect();
     let potential_energy = potential_energy(&mut g, robot, &frames, &poses, base);
+    // J̇ as the directional derivative of J's graph, or by the twists: the cheaper.
     let rate = super::base::configuration_rate(&mut g, floating, robot.n_coordinates());
-    let jacobian_space_dot = g.jvp(&end_effector.jacobian_space, &rate);
-    let jacobian_body_dot = g.jvp(&end_effector.jacobian_body, &rate);
+    let by_jvp = g.jvp(&end_effector.jacobian_space, &rate);
+    let jacobian_space_dot = super::cheaper(&g, by_jvp, space_dot);
+    let by_jvp = g.jvp(&end_effector.jacobian_body, &rate);
+    let jacobian_body_dot = super::cheaper(&g, by_jvp, body_dot);
     Kinematics {
         graph: g,
         end_effector,
@@ -232,6 +255,106 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         frames: named,
         potential_energy,
     }
+}
+
+/// Column `c` of the 6×`nv` row-major `j` as `(ω, v)`.
+fn twist_column(j: &[ExprId], nv: usize, c: usize) -> (V3, V3) {
+    (
+        std::array::from_fn(|k| j[k * nv + c]),
+        std::array::from_fn(|k| j[(3 + k) * nv + c]),
+    )
+}
+
+/// `[ad_W] X = (ω × ω_x, v × ω_x + ω × v_x)` for `W = (ω, v)`.
+fn ad(g: &mut ExprGraph, w: (V3, V3), x: (V3, V3)) -> (V3, V3) {
+    let ang = g.cross(w.0, x.0);
+    let a = g.cross(w.1, x.0);
+    let b = g.cross(w.0, x.1);
+    (ang, g.add3(a, b))
+}
+
+/// `J = Σ_c J_c ν_c` over the columns `cols` of `j`, added to `acc`.
+fn add_twists(
+    g: &mut ExprGraph,
+    j: &[ExprId],
+    nv: usize,
+    cols: &[usize],
+    rates: &[ExprId],
+    acc: (V3, V3),
+) -> (V3, V3) {
+    cols.iter().fold(acc, |(w, v), &c| {
+        let (jw, jv) = twist_column(j, nv, c);
+        let (sw, sv) = (g.scale3(rates[c], jw), g.scale3(rates[c], jv));
+        (g.add3(w, sw), g.add3(v, sv))
+    })
+}
+
+/// `J̇_s` of a space Jacobian `j` (6×nv row-major, the physical joints' columns) from the
+/// twists its columns move with: a column is `Ad_{T_{0,J_i}} A_i`, so `J̇_s,i = [ad_{V_i}]
+/// J_s,i` with `V_i` the space twist of the body joint i sits on: the base's
+/// (`Σ_{c<6} J_s,c ν_c` on a floating base, whose six columns move with it too) plus
+/// `J_s,j θ̇_j` of the joints before i on the path (`path`, base outwards). `rates`: ν on the
+/// physical joints.
+fn space_jacobian_dot(
+    g: &mut ExprGraph,
+    j: &[ExprId],
+    path: &[usize],
+    ov: usize,
+    rates: &[ExprId],
+) -> Vec<ExprId> {
+    let nv = j.len() / 6;
+    let zero = g.zero();
+    let mut out = vec![zero; 6 * nv];
+    let base: Vec<usize> = (0..ov).collect();
+    let still = (g.zero3(), g.zero3());
+    let mut twist = add_twists(g, j, nv, &base, rates, still);
+    let mut set = |g: &mut ExprGraph, c: usize, twist: (V3, V3)| {
+        let (w, v) = ad(g, twist, twist_column(j, nv, c));
+        for k in 0..3 {
+            out[k * nv + c] = w[k];
+            out[(3 + k) * nv + c] = v[k];
+        }
+    };
+    for &c in &base {
+        set(g, c, twist);
+    }
+    for &i in path {
+        set(g, ov + i, twist);
+        twist = add_twists(g, j, nv, &[ov + i], rates, twist);
+    }
+    out
+}
+
+/// `J̇_b` of a body Jacobian `j` (as [`space_jacobian_dot`]): a column is `Ad_{T_{f,J_i}}
+/// A_i`, so `J̇_b,i = [ad_{W_i}] J_b,i` with `W_i = −Σ_{j after i} J_b,j θ̇_j`, the twist of
+/// joint i's frame relative to the frame {f}, in {f}; a floating base's six columns move with
+/// all the joints of the path.
+fn body_jacobian_dot(
+    g: &mut ExprGraph,
+    j: &[ExprId],
+    path: &[usize],
+    ov: usize,
+    rates: &[ExprId],
+) -> Vec<ExprId> {
+    let nv = j.len() / 6;
+    let zero = g.zero();
+    let mut out = vec![zero; 6 * nv];
+    let mut after = (g.zero3(), g.zero3());
+    let mut set = |g: &mut ExprGraph, c: usize, after: (V3, V3)| {
+        let (w, v) = ad(g, twist_column(j, nv, c), after);
+        for k in 0..3 {
+            out[k * nv + c] = w[k];
+            out[(3 + k) * nv + c] = v[k];
+        }
+    };
+    for &i in path.iter().rev() {
+        set(g, ov + i, after);
+        after = add_twists(g, j, nv, &[ov + i], rates, after);
+    }
+    for c in 0..ov {
+        set(g, c, after);
+    }
+    out
 }
 
 /// `P(q)` of `robot` on the caller's graph, from the physical joints' positions `q` (after

@@ -53,6 +53,40 @@ fn state(r: &dynamics_model::Robot, seed: u64, quat_scale: f64) -> (Vec<f64>, Ve
     (q, v, a)
 }
 
+/// `J̇_s`, `J̇_b` as the expansion keeps them (by the twists the columns move with, where
+/// cheaper) equal the directional derivatives of `J_s`, `J_b` along the configuration rate,
+/// on trees, floating bases and prismatic joints.
+#[test]
+fn jacobian_rates_equal_the_derivatives_of_the_jacobians() {
+    for seed in 0..24u64 {
+        let r = random_tree(seed, spec(seed));
+        let (q, v, _) = state(&r, seed, 1.0);
+        let k = kinematics::expand_kinematics(&r);
+        let mut g = k.graph.clone();
+        let rate = base::configuration_rate(&mut g, r.base.floating, r.n_coordinates());
+        let jvp_s = g.jvp(&k.end_effector.jacobian_space, &rate);
+        let jvp_b = g.jvp(&k.end_effector.jacobian_body, &rate);
+        let at = |roots: &[ExprId]| {
+            g.eval(roots, &|x: Input| match x.group {
+                Q => q[x.index as usize],
+                _ => v[x.index as usize],
+            })
+        };
+        for (what, kept, derivative) in [
+            ("J̇_s", &k.jacobian_space_dot, &jvp_s),
+            ("J̇_b", &k.jacobian_body_dot, &jvp_b),
+        ] {
+            let (a, b) = (at(kept), at(derivative));
+            let scale = max_abs(&b) + 1.0;
+            assert!(
+                max_err(&a, &b) <= 1e-12 * scale,
+                "seed {seed} {what}: off by {:e}",
+                max_err(&a, &b)
+            );
+        }
+    }
+}
+
 /// The kinetic energy the expansion keeps (the bodies' twists where that is cheaper) is
 /// `½ νᵀ M ν`, on trees, floating bases and prismatic joints.
 #[test]
