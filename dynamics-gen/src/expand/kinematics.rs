@@ -31,6 +31,14 @@
 //! are zero. A floating base adds six columns for its body twist
 //! `ν_b = (ω_b, v_b)`: `[Ad_{T_{bf}⁻¹}]` in the body Jacobian and `[Ad_{T_{0b}}]` in the space
 //! Jacobian, so that `V_b = J_b ν` and `V_s = J_s ν` for the whole velocity `ν`.
+//!
+//! Their rates are the cheaper of the directional derivative of the Jacobian's graph and the
+//! twists the columns move with:
+//!
+//! ```text
+//! J̇_s,i = [ad_{V_i}] J_s,i,   V_i = V_base + Σ_{j before i} J_s,j θ̇_j   (the body joint i sits on)
+//! J̇_b,i = [ad_{W_i}] J_b,i,   W_i = −Σ_{j after i} J_b,j θ̇_j            (joint i's frame seen from {f})
+//! ```
 
 use super::base::{base_rotation, NQ_BASE, NV_BASE};
 use super::frames::{joint_frames, BodyInertia, JointFrames};
@@ -64,9 +72,10 @@ pub struct Kinematics {
     /// The end-effector frame {n+1}.
     pub end_effector: FrameKinematics,
     /// `J̇_s(q, ν)` of the end effector: the directional derivative of its `jacobian_space`
-    /// along the configuration rate ([`super::base::configuration_rate`]; inputs `q` and `ν`).
+    /// along the configuration rate ([`super::base::configuration_rate`]; inputs `q` and `ν`)
+    /// or `[ad_{V_i}] J_s,i` column by column (module docs), the cheaper.
     pub jacobian_space_dot: Vec<ExprId>,
-    /// `J̇_b(q, ν)` of the end effector, likewise.
+    /// `J̇_b(q, ν)` of the end effector, likewise (`[ad_{W_i}] J_b,i`).
     pub jacobian_body_dot: Vec<ExprId>,
     /// [`Robot::frames`], in order.
     pub frames: Vec<FrameKinematics>,
