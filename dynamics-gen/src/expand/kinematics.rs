@@ -274,6 +274,14 @@ fn twist_column(j: &[ExprId], nv: usize, c: usize) -> (V3, V3) {
     )
 }
 
+/// Column `c` of the 6×`nv` row-major `m` set to `(ω, v)`.
+fn set_column(m: &mut [ExprId], nv: usize, c: usize, (w, v): (V3, V3)) {
+    for k in 0..3 {
+        m[k * nv + c] = w[k];
+        m[(3 + k) * nv + c] = v[k];
+    }
+}
+
 /// `[ad_W] X = (ω × ω_x, v × ω_x + ω × v_x)` for `W = (ω, v)`.
 fn ad(g: &mut ExprGraph, w: (V3, V3), x: (V3, V3)) -> (V3, V3) {
     let ang = g.cross(w.0, x.0);
@@ -317,18 +325,13 @@ fn space_jacobian_dot(
     let base: Vec<usize> = (0..ov).collect();
     let still = (g.zero3(), g.zero3());
     let mut twist = add_twists(g, j, nv, &base, rates, still);
-    let mut set = |g: &mut ExprGraph, c: usize, twist: (V3, V3)| {
-        let (w, v) = ad(g, twist, twist_column(j, nv, c));
-        for k in 0..3 {
-            out[k * nv + c] = w[k];
-            out[(3 + k) * nv + c] = v[k];
-        }
-    };
     for &c in &base {
-        set(g, c, twist);
+        let rate = ad(g, twist, twist_column(j, nv, c));
+        set_column(&mut out, nv, c, rate);
     }
     for &i in path {
-        set(g, ov + i, twist);
+        let rate = ad(g, twist, twist_column(j, nv, ov + i));
+        set_column(&mut out, nv, ov + i, rate);
         twist = add_twists(g, j, nv, &[ov + i], rates, twist);
     }
     out
@@ -349,19 +352,14 @@ fn body_jacobian_dot(
     let zero = g.zero();
     let mut out = vec![zero; 6 * nv];
     let mut after = (g.zero3(), g.zero3());
-    let mut set = |g: &mut ExprGraph, c: usize, after: (V3, V3)| {
-        let (w, v) = ad(g, twist_column(j, nv, c), after);
-        for k in 0..3 {
-            out[k * nv + c] = w[k];
-            out[(3 + k) * nv + c] = v[k];
-        }
-    };
     for &i in path.iter().rev() {
-        set(g, ov + i, after);
+        let rate = ad(g, twist_column(j, nv, ov + i), after);
+        set_column(&mut out, nv, ov + i, rate);
         after = add_twists(g, j, nv, &[ov + i], rates, after);
     }
     for c in 0..ov {
-        set(g, c, after);
+        let rate = ad(g, twist_column(j, nv, c), after);
+        set_column(&mut out, nv, c, rate);
     }
     out
 }
@@ -472,12 +470,6 @@ fn frame_kinematics(
     let zero = g.zero();
     let mut j_b = vec![zero; 6 * nv];
     let mut j_s = vec![zero; 6 * nv];
-    let set = |j: &mut Vec<ExprId>, col: usize, w: V3, v: V3| {
-        for k in 0..3 {
-            j[k * nv + col] = w[k];
-            j[(3 + k) * nv + col] = v[k];
-        }
-    };
     // Body Jacobian, from the frame towards the base: X = T_{f,J_j} starts at K_f⁻¹ and
     // moves past each joint, X ← X · Rot_z(−θ_j) · C_j; column j = [Ad_X] A_j.
     let k_inv = trans_inv(&k);
@@ -494,7 +486,7 @@ fn frame_kinematics(
             JointKind::Revolute => (z, g.cross(x.p, z)),
             JointKind::Prismatic => ([zero; 3], z),
         };
-        set(&mut j_b, ov + i, w, v);
+        set_column(&mut j_b, nv, ov + i, (w, v));
         // X · Rot_z(−θ): columns (c a₀ − s a₁, s a₀ + c a₁, a₂); X · Trans_z(−θ): p − θ a₂.
         match m.frame.kind {
             JointKind::Revolute => x.r = times_rot_z(g, &x.r, m.sin, m.cos, true),
@@ -513,8 +505,8 @@ fn frame_kinematics(
         for c in 0..3 {
             let w = column(&x.r, c);
             let v = g.cross(x.p, w);
-            set(&mut j_b, c, w, v);
-            set(&mut j_b, 3 + c, [zero; 3], w);
+            set_column(&mut j_b, nv, c, (w, v));
+            set_column(&mut j_b, nv, 3 + c, ([zero; 3], w));
         }
     }
     let world = match base {
@@ -542,14 +534,14 @@ fn frame_kinematics(
             JointKind::Revolute => (z, g.cross(p, z)),
             JointKind::Prismatic => ([zero; 3], z),
         };
-        set(&mut j_s, ov + i, w, v);
+        set_column(&mut j_s, nv, ov + i, (w, v));
     }
     if let Some(b) = base {
         for c in 0..3 {
             let w = column(&b.r, c);
             let v = g.cross(b.p, w);
-            set(&mut j_s, c, w, v);
-            set(&mut j_s, 3 + c, [zero; 3], w);
+            set_column(&mut j_s, nv, c, (w, v));
+            set_column(&mut j_s, nv, 3 + c, ([zero; 3], w));
         }
     }
     let mut pose: Vec<ExprId> = world.r.iter().flatten().copied().collect();
