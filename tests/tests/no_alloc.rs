@@ -21,6 +21,7 @@ thread_local! {
 fn allocations() -> usize {
     ALLOCATIONS.with(Cell::get)
 }
+
 static CHECKED: AtomicUsize = AtomicUsize::new(0);
 
 // SAFETY: forwards to the system allocator and only counts.

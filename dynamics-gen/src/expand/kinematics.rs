@@ -222,11 +222,10 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
             .flat_map(|row| coupling.forces(g, row))
             .collect()
     };
-    let one = |g: &mut ExprGraph, frame: &Frame| {
-        let mut k = frame_kinematics(g, robot, &frames, &q, &poses, base, frame, nv);
-        k.jacobian_space = couple(g, &k.jacobian_space);
-        k.jacobian_body = couple(g, &k.jacobian_body);
-        k
+    let coupled = |g: &mut ExprGraph, k: &FrameKinematics| FrameKinematics {
+        pose: k.pose.clone(),
+        jacobian_space: couple(g, &k.jacobian_space),
+        jacobian_body: couple(g, &k.jacobian_body),
     };
     let physical = frame_kinematics(
         &mut g,
@@ -247,8 +246,15 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
     let space_dot = space_jacobian_dot(&mut g, &physical.jacobian_space, &path, ov, &rates);
     let body_dot = body_jacobian_dot(&mut g, &physical.jacobian_body, &path, ov, &rates);
     let (space_dot, body_dot) = (couple(&mut g, &space_dot), couple(&mut g, &body_dot));
-    let end_effector = one(&mut g, &robot.end_effector);
-    let named = robot.frames.iter().map(|f| one(&mut g, f)).collect();
+    let end_effector = coupled(&mut g, &physical);
+    let named = robot
+        .frames
+        .iter()
+        .map(|f| {
+            let k = frame_kinematics(&mut g, robot, &frames, &q, &poses, base, f, nv);
+            coupled(&mut g, &k)
+        })
+        .collect();
     let potential_energy = potential_energy(&mut g, robot, &frames, &poses, base);
     // J̇ as the directional derivative of J's graph, or by the twists: the cheaper.
     let rate = super::base::configuration_rate(&mut g, floating, robot.n_coordinates());

@@ -13,43 +13,33 @@
 //! per body, about 25 multiplications each against the `n²` entries of `M` and the products
 //! that build them.
 
-use super::rnea::BaseMotion;
 use super::spatial::{Inertia, JointMotion, Spatial, VectorOps};
 use crate::expr::{ExprGraph, ExprId};
-use dynamics_model::JointKind;
 
-/// `K` for the joints' rates `qd` (one per joint, in the order of `joints`), the base's
-/// motion `base` (only its twist is read), a floating base's inertia `base_inertia` and the
-/// joints' armatures `armature` (one per joint).
+/// `K` for the joints' rates `qd` (one per joint, in the order of `joints`), the base's twist
+/// `v0`, a floating base's inertia `base_inertia` and the joints' armatures `armature` (one
+/// per joint).
 pub fn kinetic_energy(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
-    base: &BaseMotion,
+    v0: Spatial,
     base_inertia: Option<&super::frames::BodyInertia>,
     qd: &[ExprId],
     armature: &[f64],
 ) -> ExprId {
-    let mut vs: Vec<Spatial> = Vec::with_capacity(joints.len());
+    let twists = super::lagrangian::link_twists(g, joints, v0, qd);
     let mut terms = Vec::with_capacity(2 * joints.len() + 1);
-    for (i, jm) in joints.iter().enumerate() {
-        let parent = jm.frame.parent.map_or(base.v, |p| vs[p]);
-        let mut v = jm.motion_to_child(g, parent);
-        let k = match jm.frame.kind {
-            JointKind::Revolute => &mut v.ang[2],
-            JointKind::Prismatic => &mut v.lin[2],
-        };
-        *k = g.add(*k, qd[i]);
+    for (i, (jm, v)) in joints.iter().zip(&twists).enumerate() {
         let gi = super::parameters::link_inertia(g, jm.frame);
-        terms.push(body_energy(g, &gi, &v));
+        terms.push(body_energy(g, &gi, v));
         if armature[i] != 0.0 {
             let sq = g.mul(qd[i], qd[i]);
             terms.push(g.cmul(0.5 * armature[i], sq));
         }
-        vs.push(v);
     }
     if let Some(b) = base_inertia {
         let gb = Inertia::constant(g, b);
-        terms.push(body_energy(g, &gb, &base.v));
+        terms.push(body_energy(g, &gb, &v0));
     }
     g.sum(&terms)
 }

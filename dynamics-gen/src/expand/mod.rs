@@ -504,11 +504,11 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     }
     let by_aba = by_aba.unwrap_or_default();
     // The kinetic energy by the bodies' twists; `finish` keeps it or `½ νᵀ M ν`, the cheaper.
-    let kinetic_base = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], no_gravity);
+    let v0 = base::base_motion(&mut g, floating, &qd[..ov], &zeros[..ov], no_gravity).v;
     let kinetic = [kinetic::kinetic_energy(
         &mut g,
         &motions,
-        &kinetic_base,
+        v0,
         base_inertia,
         &qd[ov..],
         &armature,
