@@ -142,3 +142,175 @@ pub fn ltdl_apply(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId
     }
     x
 }
+
+/// `M⁻¹ = L⁻¹ D⁻¹ L⁻ᵀ` (n×n row-major, symmetric) from the factors of [`ltdl_factor`]:
+///
+/// ```text
+/// U = L⁻¹:   U_jj = 1,  U_ij = −Σ_{j≤k<i} L_ik U_kj   (i > j)
+/// W_jk = U_jk / D_k  (k ≤ j),   (M⁻¹)_ij = Σ_{k≤j} U_ik W_jk   (i ≥ j)
+/// ```
+///
+/// `U` is unit lower triangular with `L`'s pattern on a tree (k an ancestor of i), so the
+/// structural zeros stay zero. For n = 7 that is 35 + 21 + 77 multiplications after the
+/// factor, against about 270 for n solves with unit vectors.
+pub fn ltdl_inverse(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId]) -> Vec<ExprId> {
+    let n = inv_d.len();
+    let zero = g.zero();
+    let one = g.one();
+    // U = L⁻¹, column by column from the diagonal down. (Row by row, from `U L = 1`, has
+    // the same count; measured no faster, and 6–7 % slower on the UR5.)
+    let mut u = vec![zero; n * n];
+    for j in 0..n {
+        u[j * n + j] = one;
+        for i in j + 1..n {
+            let terms: Vec<ExprId> = (j..i).map(|k| g.mul(h[i * n + k], u[k * n + j])).collect();
+            let s = g.sum(&terms);
+            u[i * n + j] = g.neg(s);
+        }
+    }
+    // W_jk = U_jk / D_k.
+    let w: Vec<ExprId> = (0..n * n)
+        .map(|x| {
+            let (j, k) = (x / n, x % n);
+            if k <= j {
+                g.mul(u[x], inv_d[k])
+            } else {
+                zero
+            }
+        })
+        .collect();
+    let mut inv = vec![zero; n * n];
+    for j in 0..n {
+        for i in j..n {
+            let terms: Vec<ExprId> = (0..=j).map(|k| g.mul(u[i * n + k], w[j * n + k])).collect();
+            let s = g.sum(&terms);
+            inv[i * n + j] = s;
+            inv[j * n + i] = s;
+        }
+    }
+    inv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::Input;
+    use dynamics_model::random::Rng;
+
+    /// A symmetric positive definite `M = Lᵀ D L` whose pattern is that of the tree
+    /// `parent` (`M_ij ≠ 0` only for i, j on one path to the root), as graph inputs where it
+    /// is non-zero and exact zeros elsewhere; and its values.
+    fn tree_matrix(
+        g: &mut ExprGraph,
+        parent: &[Option<usize>],
+        rng: &mut Rng,
+    ) -> (Vec<ExprId>, Vec<f64>) {
+        let n = parent.len();
+        let ancestor = |i: usize, j: usize| {
+            let mut k = Some(i);
+            while let Some(x) = k {
+                if x == j {
+                    return true;
+                }
+                k = parent[x];
+            }
+            false
+        };
+        let mut l = vec![0.0; n * n];
+        for i in 0..n {
+            l[i * n + i] = 1.0;
+            for j in 0..i {
+                if ancestor(i, j) {
+                    l[i * n + j] = rng.uniform(-1.0, 1.0);
+                }
+            }
+        }
+        let d: Vec<f64> = (0..n).map(|_| rng.uniform(0.2, 2.0)).collect();
+        let mut m = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                m[i * n + j] = (0..n).map(|k| l[k * n + i] * d[k] * l[k * n + j]).sum();
+            }
+        }
+        let zero = g.zero();
+        let ids = (0..n * n)
+            .map(|x| {
+                let (i, j) = (x / n, x % n);
+                let (hi, lo) = (i.max(j), i.min(j));
+                if ancestor(hi, lo) {
+                    g.input(Input::new(0, (hi * n + lo) as u16))
+                } else {
+                    zero
+                }
+            })
+            .collect();
+        (ids, m)
+    }
+
+    #[test]
+    fn the_inverse_from_the_factor_is_the_inverse() {
+        let mut rng = Rng::new(0x1D17);
+        let trees: [&[Option<usize>]; 5] = [
+            &[None],
+            &[None, Some(0), Some(1), Some(2), Some(3), Some(4), Some(5)],
+            &[None, Some(0), Some(1), Some(0), Some(3), Some(0), Some(5)],
+            &[None, None, Some(0), Some(1), Some(2), Some(3)],
+            &[
+                None,
+                Some(0),
+                Some(0),
+                Some(1),
+                Some(1),
+                Some(2),
+                Some(2),
+                Some(6),
+            ],
+        ];
+        for parent in trees {
+            let n = parent.len();
+            for _ in 0..4 {
+                let mut g = ExprGraph::new();
+                let (m_ids, m) = tree_matrix(&mut g, parent, &mut rng);
+                let (h, inv_d) = ltdl_factor(&mut g, &m_ids);
+                let inv = ltdl_inverse(&mut g, &h, &inv_d);
+                let x = g.eval(&inv, &|i: Input| m[i.index as usize]);
+                for i in 0..n {
+                    for j in 0..n {
+                        let p: f64 = (0..n).map(|k| x[i * n + k] * m[k * n + j]).sum();
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        assert!(
+                            (p - want).abs() < 1e-12,
+                            "{parent:?}: (M⁻¹M)[{i}][{j}] = {p}"
+                        );
+                        assert_eq!(x[i * n + j], x[j * n + i]);
+                    }
+                }
+                // Equal to the column-by-column solves, with no more multiplications (on a
+                // tree, U keeps the factor's structural zeros).
+                let zero = g.zero();
+                let one = g.one();
+                let mut cols = vec![zero; n * n];
+                for j in 0..n {
+                    let e: Vec<ExprId> = (0..n).map(|i| if i == j { one } else { zero }).collect();
+                    let c = ltdl_apply(&mut g, &h, &inv_d, &e);
+                    for i in 0..n {
+                        cols[i * n + j] = c[i];
+                    }
+                }
+                let y = g.eval(&cols, &|i: Input| m[i.index as usize]);
+                for (a, b) in x.iter().zip(&y) {
+                    assert!(
+                        (a - b).abs() < 1e-12 * (1.0 + b.abs()),
+                        "{parent:?}: {a} vs {b}"
+                    );
+                }
+                assert!(
+                    g.op_counts(&inv).mul <= g.op_counts(&cols).mul,
+                    "{parent:?}: {} vs {}",
+                    g.op_counts(&inv),
+                    g.op_counts(&cols)
+                );
+            }
+        }
+    }
+}
