@@ -23,8 +23,8 @@
 //!   when the result is finite), and apply cheap local rules: `x*0 -> 0`,
 //!   `x*1 -> x`, `x*(-1) -> -x`, `x+0 -> x`, `x-0 -> x`, `0-x -> -x`,
 //!   `x-x -> 0`, `x+x -> 2*x`, `-(-x) -> x`, `-(a-b) -> b-a`,
-//!   `c*(d*x) -> (c*d)*x`, constant factors hoisted out of products
-//!   (`(c*x)*y -> c*(x*y)`), negations pulled out of products, quotients
+//!   `c*(d*x) -> (c*d)*x` (but `(c*x)*y` stays: hoisting the constant would
+//!   cost a product wherever `c*x` is shared), negations pulled out of products, quotients
 //!   and `sin` (and dropped by `cos`), `a+(-b) -> a-b`, `(-a)+b -> b-a`,
 //!   `a-(-b) -> a+b`, like terms `c*x + d*x -> (c+d)*x` and
 //!   `c*x - d*x -> (c-d)*x` (with `x = 1*x`, `-x = (-1)*x`; an exact 0

@@ -119,8 +119,8 @@ mod tests {
         let two = g.constant(2.0);
         let s0 = g.sin(q0);
         let c0 = g.cos(q0);
-        let t = g.mul(two, s0); // dead after the next line
-        let t = g.mul(t, c0); // hoisted: 2*(sin*cos), two muls
+        let t = g.mul(two, s0);
+        let t = g.mul(t, c0); // (2*sin)*cos: two muls
         let sq = g.sqrt(q1); // sqrt 1
         let d = g.sub(q1, q0); // add_sub 1
         let r = g.div(sq, d); // div 1

@@ -93,11 +93,7 @@ impl ExprGraph {
                         .is_some_and(|(d, _)| merge_scale(c, d).is_some());
                     ensure(!mergeable, "unmerged constant factors")
                 } else {
-                    ensure(a <= b, "non-canonical order")?;
-                    ensure(
-                        self.scaled(a).is_none() && self.scaled(b).is_none(),
-                        "constant factor not hoisted",
-                    )
+                    ensure(a <= b, "non-canonical order")
                 }
             }
             Node::Div(a, b) => {
