@@ -286,18 +286,8 @@ pub fn expand_derivatives(d: &Dynamics, robot: &Robot) -> Derivatives {
             id = a.inverse_dynamics;
         }
     }
-    // M⁻¹: columns M⁻¹ e_j (the lower triangle kept and mirrored), or `L⁻¹ D⁻¹ L⁻ᵀ`, the
-    // cheaper.
-    let (zero, one) = (g.zero(), g.one());
-    let mut by_columns = vec![zero; nv * nv];
-    for j in 0..nv {
-        let e: Vec<ExprId> = (0..nv).map(|i| if i == j { one } else { zero }).collect();
-        let col = ldlt::ltdl_apply(&mut g, &h, &inv_d, &e);
-        for i in j..nv {
-            by_columns[i * nv + j] = col[i];
-            by_columns[j * nv + i] = col[i];
-        }
-    }
+    // M⁻¹: columns M⁻¹ e_j, or `L⁻¹ D⁻¹ L⁻ᵀ`, the cheaper.
+    let by_columns = ldlt::ltdl_inverse_by_columns(&mut g, &h, &inv_d);
     let by_inverse = ldlt::ltdl_inverse(&mut g, &h, &inv_d);
     let mass_matrix_inverse = super::cheaper(&g, by_columns, by_inverse);
     // ν̇ := FD(q, ν, τ) in the partials of inverse dynamics, then −M⁻¹ ·.

@@ -143,6 +143,23 @@ pub fn ltdl_apply(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId
     x
 }
 
+/// `M⁻¹` (n×n row-major) by [`ltdl_apply`] on each unit vector `e_j`, the lower triangle
+/// kept and mirrored.
+pub fn ltdl_inverse_by_columns(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId]) -> Vec<ExprId> {
+    let n = inv_d.len();
+    let (zero, one) = (g.zero(), g.one());
+    let mut inv = vec![zero; n * n];
+    for j in 0..n {
+        let e: Vec<ExprId> = (0..n).map(|i| if i == j { one } else { zero }).collect();
+        let col = ltdl_apply(g, h, inv_d, &e);
+        for i in j..n {
+            inv[i * n + j] = col[i];
+            inv[j * n + i] = col[i];
+        }
+    }
+    inv
+}
+
 /// `M⁻¹ = L⁻¹ D⁻¹ L⁻ᵀ` (n×n row-major, symmetric) from the factors of [`ltdl_factor`]:
 ///
 /// ```text
@@ -287,16 +304,7 @@ mod tests {
                 }
                 // Equal to the column-by-column solves, with no more multiplications (on a
                 // tree, U keeps the factor's structural zeros).
-                let zero = g.zero();
-                let one = g.one();
-                let mut cols = vec![zero; n * n];
-                for j in 0..n {
-                    let e: Vec<ExprId> = (0..n).map(|i| if i == j { one } else { zero }).collect();
-                    let c = ltdl_apply(&mut g, &h, &inv_d, &e);
-                    for i in 0..n {
-                        cols[i * n + j] = c[i];
-                    }
-                }
+                let cols = ltdl_inverse_by_columns(&mut g, &h, &inv_d);
                 let y = g.eval(&cols, &|i: Input| m[i.index as usize]);
                 for (a, b) in x.iter().zip(&y) {
                     assert!(
