@@ -155,6 +155,30 @@ if rows:
     print("\n".join(rows))
 EOF
 
+# 4c. f32 beside f64, generated code only, this run (`bench_f32!` in tests/benches/dynamics.rs): the
+# same robot generated with scalar f32 on the same states rounded to f32, and for the UR5 its f32
+# `no_std` code (no CPU dispatch: the portable copy).
+"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
+import json, os, sys
+crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
+def median(robot, name):
+    est = os.path.join(crit, robot, name, "new", "estimates.json")
+    if os.path.exists(est) and os.path.getmtime(est) >= start:
+        return json.load(open(est))["median"]["point_estimate"]
+rows = []
+for robot in robots:
+    for f in ["inverse_dynamics", "coriolis", "gravity", "mass_matrix", "forward_dynamics",
+              "end_effector_pose", "jacobian_space"]:
+        f64, f32 = median(robot, "generated_" + f), median(robot, "generated_f32_" + f)
+        if f64 and f32:
+            ns = median(robot, "generated_f32_no_std_" + f)
+            cell = f"{ns:10.1f}" if ns else f"{'-':>10}"
+            rows.append(f"{robot:<16} {f:<20} {f64:8.1f} {f32:8.1f} {f64 / f32:6.2f}x {cell}")
+if rows:
+    print(f"\n{'robot':<16} {'function':<20} {'f64':>8} {'f32':>8} {'f64/f32':>7} {'f32 no_std':>10}")
+    print("\n".join(rows))
+EOF
+
 # 5. With CALLGRIND=1: instructions per call, both sides running AVX2 and FMA code (valgrind reports
 # AVX2 and FMA but not AVX-512, so the default build of ours runs its AVX2 copy; Pinocchio is built for
 # x86-64-v3). Each program runs at 1,024 and 2,048 calls; the difference of the counts over 1,024 is the

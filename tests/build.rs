@@ -36,6 +36,14 @@ const PORTABLE: &[&str] = &[
     "random_104_f32",
 ];
 
+/// The cases generated a second time in f32 (std, dispatched), as modules `f32_<case>`: the
+/// arms the benchmark times, so that `cargo bench` sets f32 beside f64 on the same robot
+/// (`bench_f32!` in benches/dynamics.rs). Every comparison test runs on them as on the others;
+/// they have no derivative functions ([`WITHOUT_DERIVATIVES`], for compile time: the f32
+/// derivatives are compiled and tested on the random f32 chains and trees, `random_104_f32`
+/// and others).
+const F32: &[&str] = &["urdf_ur5", "urdf_panda", "urdf_rand7"];
+
 /// The dispatched cases whose AVX-512 and AVX2 copies are run side by side
 /// (`tests/dispatched_copies.rs`): each module gets `dispatched_copies_differ`, which may call
 /// the copies directly, as only code in the module can.
@@ -85,6 +93,9 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
     "lagrangian_random_106_f32",
     "lagrangian_tree_208_f64",
     "lagrangian_actuated_401",
+    "f32_urdf_ur5",
+    "f32_urdf_panda",
+    "f32_urdf_rand7",
 ];
 
 /// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
@@ -379,6 +390,18 @@ fn main() {
         let case = Case {
             module: format!("runtime_{module}"),
             runtime: true,
+            ..case.clone()
+        };
+        cases.push(case);
+    }
+    for module in F32 {
+        let case = cases
+            .iter()
+            .find(|c| c.module == *module)
+            .unwrap_or_else(|| panic!("no case {module}"));
+        let case = Case {
+            module: format!("f32_{module}"),
+            scalar: Scalar::F32,
             ..case.clone()
         };
         cases.push(case);

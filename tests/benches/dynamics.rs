@@ -448,6 +448,65 @@ macro_rules! bench_every {
     }};
 }
 
+/// The same robot's code generated in f32 (`scalar = "f32"`), on the same states rounded to
+/// f32, as `generated_f32/<function>` beside the f64 rows of `bench_robot!` and
+/// `bench_every!`; with a fourth module, the f32 `no_std` code too (no CPU dispatch: the
+/// portable copy, what an embedded target's code looks like on this machine), as
+/// `generated_f32_no_std/<function>`. `bench/run.sh` prints them side by side.
+macro_rules! bench_f32 {
+    ($c:expr, $label:literal, $m64:ident, $m32:ident, $nq:literal, $nv:literal $(, $no_std:ident)?) => {{
+        use dynamics_tests::generated::$m64::Robot as Gen64;
+        let states: Vec<_> = states::<$nq, $nv>(|q, qd, qdd| Gen64.inverse_dynamics(q, qd, qdd))
+            .iter()
+            .map(|s| {
+                (
+                    s.q.cast::<f32>(),
+                    s.qd.cast::<f32>(),
+                    s.qdd.cast::<f32>(),
+                    s.tau.cast::<f32>(),
+                )
+            })
+            .collect();
+        let mut group = $c.benchmark_group($label);
+        macro_rules! rows {
+            ($prefix:literal, $m:ident, $kinematics:literal) => {{
+                use dynamics_tests::generated::$m::Robot as Gen;
+                group.bench_function(concat!($prefix, "/inverse_dynamics"), |b| {
+                    cycled(b, &states, |s| {
+                        Gen.inverse_dynamics(black_box(&s.0), black_box(&s.1), black_box(&s.2))
+                    })
+                });
+                group.bench_function(concat!($prefix, "/coriolis"), |b| {
+                    cycled(b, &states, |s| Gen.coriolis(black_box(&s.0), black_box(&s.1)))
+                });
+                group.bench_function(concat!($prefix, "/gravity"), |b| {
+                    cycled(b, &states, |s| Gen.gravity(black_box(&s.0)))
+                });
+                group.bench_function(concat!($prefix, "/mass_matrix"), |b| {
+                    cycled(b, &states, |s| Gen.mass_matrix(black_box(&s.0)))
+                });
+                group.bench_function(concat!($prefix, "/forward_dynamics"), |b| {
+                    cycled(b, &states, |s| {
+                        Gen.forward_dynamics(black_box(&s.0), black_box(&s.1), black_box(&s.3))
+                    })
+                });
+                if $kinematics {
+                    group.bench_function(concat!($prefix, "/end_effector_pose"), |b| {
+                        cycled(b, &states, |s| Gen.end_effector_pose(black_box(&s.0)))
+                    });
+                    group.bench_function(concat!($prefix, "/jacobian_space"), |b| {
+                        cycled(b, &states, |s| Gen.jacobian_space(black_box(&s.0)))
+                    });
+                }
+            }};
+        }
+        rows!("generated_f32", $m32, true);
+        // The shipped robot's tip may differ from the benchmark's: dynamics only.
+        $(rows!("generated_f32_no_std", $no_std, false);)?
+        group.finish();
+    }};
+}
+
 /// The batch functions on 8 states against 8 single-state calls on the same states: both
 /// rows time 8 states, so their ratio is the batch's gain per state.
 macro_rules! bench_batch {
@@ -533,6 +592,17 @@ fn benches(c: &mut Criterion) {
     bench_every!(c, "ur5", urdf_ur5, 6, load("ur5", "tool0"));
     bench_every!(c, "panda", urdf_panda, 7, load("panda", "panda_hand_tcp"));
     bench_every!(c, "rand7", urdf_rand7, 7, load("rand7", "ee_link"));
+    bench_f32!(
+        c,
+        "ur5",
+        urdf_ur5,
+        f32_urdf_ur5,
+        6,
+        6,
+        shipped_ur5_f32_no_std
+    );
+    bench_f32!(c, "panda", urdf_panda, f32_urdf_panda, 7, 7);
+    bench_f32!(c, "rand7", urdf_rand7, f32_urdf_rand7, 7, 7);
     bench_batch!(c, "ur5", urdf_ur5, 6, 6);
     bench_batch!(c, "panda", urdf_panda, 7, 7);
     bench_batch!(c, "rand7", urdf_rand7, 7, 7);
