@@ -131,7 +131,7 @@ if rows:
     print("\n".join(rows))
 EOF
 
-# 4b. The generic reference implementation (dynamics-reference: heap, loops over joints) against
+# 4b. (and 4c, f32 beside f64) The generic reference implementation (dynamics-reference: heap, loops over joints) against
 # the generated code, this run: every function criterion timed on both sides (on the arms, all
 # that have a counterpart: `bench_every!` in tests/benches/dynamics.rs; the derivatives' reference
 # is central differences of the reference, as the tests compare them).
@@ -153,18 +153,9 @@ for robot in robots:
 if rows:
     print(f"\n{'robot':<16} {'function':<34} {'reference':>10} {'ours':>9} {'ratio':>7}")
     print("\n".join(rows))
-EOF
-
-# 4c. f32 beside f64, generated code only, this run (`bench_f32!` in tests/benches/dynamics.rs): the
-# same robot generated with scalar f32 on the same states rounded to f32, and for the UR5 its f32
-# `no_std` code (no CPU dispatch: the portable copy).
-"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
-import json, os, sys
-crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
-def median(robot, name):
-    est = os.path.join(crit, robot, name, "new", "estimates.json")
-    if os.path.exists(est) and os.path.getmtime(est) >= start:
-        return json.load(open(est))["median"]["point_estimate"]
+# 4c. f32 beside f64, generated code only (`bench_f32!`): the same robot generated with scalar f32
+# on the same states rounded to f32, and for the UR5 its f32 `no_std` code (no CPU dispatch: the
+# portable copy).
 rows = []
 for robot in robots:
     for f in ["inverse_dynamics", "coriolis", "gravity", "mass_matrix", "forward_dynamics",
