@@ -131,7 +131,7 @@ if rows:
     print("\n".join(rows))
 EOF
 
-# 4b. (and 4c, f32 beside f64) The generic reference implementation (dynamics-reference: heap, loops over joints) against
+# 4b. The generic reference implementation (dynamics-reference: heap, loops over joints) against
 # the generated code, this run: every function criterion timed on both sides (on the arms, all
 # that have a counterpart: `bench_every!` in tests/benches/dynamics.rs; the derivatives' reference
 # is central differences of the reference, as the tests compare them).

@@ -24,6 +24,18 @@ struct Case {
     portable: bool,
 }
 
+/// A copy of the case `module` named `<prefix><module>`, for a second generation of it.
+fn variant(cases: &[Case], module: &str, prefix: &str) -> Case {
+    let case = cases
+        .iter()
+        .find(|c| c.module == module)
+        .unwrap_or_else(|| panic!("no case {module}"));
+    Case {
+        module: format!("{prefix}{module}"),
+        ..case.clone()
+    }
+}
+
 /// The cases generated a second time without run-time CPU dispatch, as modules
 /// `portable_<case>`: every other std case calls its AVX-512 or AVX2 copy on a CPU that has
 /// either (such as this project's machines, and most x86-64 CPUs), so these keep the portable
@@ -371,50 +383,29 @@ fn main() {
         });
     }
 
+    // The second generations of cases, in this order (RUNTIME names a Lagrangian case).
     for module in LAGRANGIAN {
-        let case = cases
-            .iter()
-            .find(|c| c.module == *module)
-            .unwrap_or_else(|| panic!("no case {module}"));
-        let case = Case {
-            module: format!("lagrangian_{module}"),
-            ..case.clone()
-        };
+        let case = variant(&cases, module, "lagrangian_");
         cases.push(case);
     }
     for module in RUNTIME {
-        let case = cases
-            .iter()
-            .find(|c| c.module == *module)
-            .unwrap_or_else(|| panic!("no case {module}"));
         let case = Case {
-            module: format!("runtime_{module}"),
             runtime: true,
-            ..case.clone()
+            ..variant(&cases, module, "runtime_")
         };
         cases.push(case);
     }
     for module in F32 {
-        let case = cases
-            .iter()
-            .find(|c| c.module == *module)
-            .unwrap_or_else(|| panic!("no case {module}"));
         let case = Case {
-            module: format!("f32_{module}"),
             scalar: Scalar::F32,
-            ..case.clone()
+            ..variant(&cases, module, "f32_")
         };
         cases.push(case);
     }
     for module in PORTABLE {
-        let case = cases
-            .iter()
-            .find(|c| c.module == *module)
-            .unwrap_or_else(|| panic!("no case {module}"));
         let case = Case {
-            module: format!("portable_{module}"),
             portable: true,
-            ..case.clone()
+            ..variant(&cases, module, "portable_")
         };
         cases.push(case);
     }
