@@ -41,8 +41,14 @@ pub const MAX_LANES_OUTPUTS: usize = 64;
 
 /// The most operations of a vectorised batch body. Measured as above, inverse dynamics:
 /// Talos' upper body (2,451 operations) 1.47× with `B` = 8 and 1.19× with 4, G1 (3,409)
-/// 1.02× and 0.82×.
-pub const MAX_LANES_OPS: usize = 3000;
+/// 1.02× and 0.82×. Solo-12's forward dynamics on its floating base (2,966 operations) was
+/// 0.64–0.71× with `B` = 8 (1.45–1.52× with 4, 1.69–1.76× with 2; a scratch harness, medians
+/// of 11 interleaved rounds, 2026-11-27): its AVX-512 copy held 20,827 instructions against
+/// 7,156 for `B` = 4, most of them scalar (`vmulsd`, `vfmadd231sd`), as the optimiser's
+/// vectoriser, which has to rebuild each operation's `B` lanes from the unrolled lane loops,
+/// left most of the 8-wide body unvectorised. The bound is an operation count, a crude proxy
+/// for that: it sits between the two measured bodies.
+pub const MAX_LANES_OPS: usize = 2500;
 
 /// One batch function: its name, the single-state function it batches, its arguments, its
 /// outputs on `graph` and their columns (1: a vector).
@@ -184,7 +190,7 @@ pub fn batch_functions(
                 } else if too_many_outputs {
                     format!("its result has {} entries, and transposing that many out of `B`-wide lanes costs more than computing them lane-wise gains (more than {MAX_LANES_OUTPUTS} entries)", rows * f.cols)
                 } else {
-                    format!("its body ({ops} operations) is too large to unroll `B` wide without spilling (more than {MAX_LANES_OPS})")
+                    format!("its body ({ops} operations) is too large to unroll `B` wide (more than {MAX_LANES_OPS}: the optimiser leaves such bodies largely unvectorised, and their `B`-wide values spill)")
                 };
                 (
                     quote! {
