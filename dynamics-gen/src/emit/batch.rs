@@ -42,7 +42,7 @@ pub const MAX_LANES_OUTPUTS: usize = 64;
 /// The most operations of a vectorised batch body. Measured as above, inverse dynamics:
 /// Talos' upper body (2,451 operations) 1.47× with `B` = 8 and 1.19× with 4, G1 (3,409)
 /// 1.02× and 0.82×. Solo-12's forward dynamics on its floating base (2,966 operations) was
-/// 0.64–0.71× with `B` = 8 (1.45–1.52× with 4, 1.69–1.76× with 2; a scratch harness, medians
+/// 0.64–0.71× with `B` = 8 (1.45–1.52× with 4, 1.38–1.76× with 2; a scratch harness, medians
 /// of 11 interleaved rounds, 2026-11-27): its AVX-512 copy held 20,827 instructions against
 /// 7,156 for `B` = 4, most of them scalar (`vmulsd`, `vfmadd231sd`), as the optimiser's
 /// vectoriser, which has to rebuild each operation's `B` lanes from the unrolled lane loops,
