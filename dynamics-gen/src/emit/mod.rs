@@ -209,11 +209,15 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         group: TAU,
         len: nv_usize,
     };
-    let mass_matrix = body(
+    let mass_matrix = body_tokens(
         "mass_matrix",
-        &dynamics.mass_matrix,
+        &dynamics.graph,
         std::slice::from_ref(&q),
-        nv_usize,
+        &dynamics.mass_matrix,
+        (nv_usize, nv_usize),
+        Output::StoredMatrix,
+        options,
+        &nalgebra,
     );
     let coriolis = body("coriolis", &dynamics.coriolis, &[q.clone(), qd.clone()], 1);
     let gravity = body("gravity", &dynamics.gravity, std::slice::from_ref(&q), 1);

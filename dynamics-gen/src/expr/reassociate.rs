@@ -25,8 +25,8 @@
 //! value and by reference): a 7-joint general-geometry arm's inverse dynamics −5 to −7 %,
 //! forward dynamics −6 to −12 %, gravity −19 to −23 %; the UR5 −1 to −5 %. The Panda's
 //! inverse dynamics moved by +2 % (by reference) to +12 % (by value): the machine-code
-//! effect the README describes for results returned by value, which moves with any change
-//! of the body.
+//! effect of results returned by value that `docs/performance.md` describes, which moves
+//! with any change of the body.
 
 use super::{ExprGraph, ExprId, Node};
 use std::cmp::Reverse;
