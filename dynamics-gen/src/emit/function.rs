@@ -117,10 +117,13 @@ const MAX_BLOCK_LETS: usize = 512;
 pub(crate) const MAX_UNSPLIT_LETS: usize = 4096;
 
 /// An [`Output::StoredMatrix`] is stored entry by entry only when, returned as one literal,
-/// more values than this would be live at once: the registers of an AVX-512 copy. Below it
-/// the literal is kept: the UR5's mass matrix (22 values at most) was 3–9 % slower stored
-/// (by value; 9–16 % for a caller that adds up its entries), the Panda's (50) 5–8 % faster.
-const STORED_MIN_LIVE: usize = 32;
+/// more values than this would be live at once: twice the registers of an AVX-512 copy.
+/// Measured (values live at most as a literal; old → new time, two runs each, see
+/// [`FunctionBody::stores`]): G1 432, −8 %; Solo-12 130, −9 % and −14 %; TALOS' upper body
+/// 186, −0.2 % and −1.5 %; the Panda 50, −5 % and −8 %; Baxter's left arm 47, +7 % and −1 %;
+/// rand7 43, ±1 %; the xArm7 41, +5 % and +14 %; the UR5 22, −4 to +9 %. The bound keeps
+/// every arm measured, the Panda's gain with the others' losses, as a literal.
+const STORED_MIN_LIVE: usize = 64;
 
 /// The `let` statements of one part of a split body (see [`chunked`]). Measured on a
 /// humanoid's (G1, floating base) derivatives, three functions of 12k–20k statements: one
@@ -712,12 +715,12 @@ impl FunctionBody<'_> {
     /// from the leaves). Scheduled from the last entry back and stored at once, the values
     /// live at any point fall from 273 to 49 on a humanoid (G1, floating base; from 93 to 47
     /// on Solo-12). Measured (old and new generated code side by side in one binary, medians
-    /// of 9 interleaved rounds of 20,000 calls at cycled random states, default profile, so
-    /// the AVX-512 copies, 2026-11-27): G1 911 → 828 ns (−9 %, two runs; the copy's stack
-    /// stores 827 → 578), Solo-12 −6 and −15 %, the Panda −11 and −12 %, the UR5 −5 and 0 %.
-    /// Either change alone gained less (G1: −1 % scheduled from the end, +2 to +3 % stored
-    /// at once), and scheduling every function from its last output back made G1's inverse
-    /// dynamics 9–13 % slower.
+    /// of 11 interleaved rounds of 20,000 calls at cycled random states, default profile, so
+    /// the AVX-512 copies, 2026-11-27): G1 907 → 834 ns (−8 %, two runs; the copy's stack
+    /// stores 827 → 566), Solo-12 −9 and −14 %; on smaller bodies it gains little or loses
+    /// ([`STORED_MIN_LIVE`]). Either change alone gained less (G1: −1 % scheduled from the
+    /// end, +2 to +3 % stored at once), and scheduling every function from its last output
+    /// back made G1's inverse dynamics 9–13 % slower.
     fn stores(
         &self,
         bind: &[Binding],
@@ -1276,30 +1279,40 @@ mod tests {
 
     #[test]
     fn a_mass_matrix_with_many_live_values_is_stored_entry_by_entry_from_the_last() {
-        // rand7's literal would keep more than 32 values live: stored.
-        let code = crate::Builder::new("rand7").generate().expect("generates");
+        // Solo-12's literal on its floating base would keep 130 values live: stored.
+        let solo = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/solo12.urdf"
+        );
+        let code = crate::Builder::new(solo)
+            .floating_base(true)
+            .generate()
+            .expect("generates");
         let body = mass_matrix_body(&code);
-        assert!(body.contains("letmutm=::nalgebra::SMatrix::<f64,7,7>::zeros();"));
+        assert!(body.contains("letmutm=::nalgebra::SMatrix::<f64,18,18>::zeros();"));
         assert!(!body.contains("from_array_storage"));
-        // Every entry written exactly once (none is zero), both halves by one statement.
-        for r in 0..7 {
-            for c in 0..7 {
-                assert_eq!(body.matches(&format!("m.data.0[{c}][{r}]=")).count(), 1);
+        // Every entry written at most once (zeros not at all), both halves by one statement.
+        for r in 0..18 {
+            for c in 0..18 {
+                assert!(body.matches(&format!("m.data.0[{c}][{r}]=")).count() <= 1);
             }
         }
         let (last, first) = (
-            body.find("m.data.0[6][6]=").expect("M₆₆"),
-            body.find("m.data.0[0][0]=").expect("M₀₀"),
+            body.find("m.data.0[17][17]=").expect("the last entry"),
+            body.find("m.data.0[0][0]=").expect("the first"),
         );
         assert!(last < first, "scheduled from the last entry back");
-        // M₆₅ and M₅₆ (one named value) by one statement.
-        let at = body.find("m.data.0[5][6]=").expect("M₆₅") + "m.data.0[5][6]=".len();
+        let at = body.find("m.data.0[16][17]=").expect("M₁₇,₁₆") + "m.data.0[16][17]=".len();
         let value = &body[at..at + body[at..].find(';').expect("a statement")];
-        assert!(body.contains(&format!("m.data.0[5][6]={value};m.data.0[6][5]={value};")));
+        assert!(body.contains(&format!(
+            "m.data.0[16][17]={value};m.data.0[17][16]={value};"
+        )));
         assert!(body.ends_with('m'), "returns the matrix");
-        // The UR5's literal keeps at most 22 values live: kept.
-        let code = crate::Builder::new("ur5").generate().expect("generates");
-        let body = mass_matrix_body(&code);
-        assert!(body.contains("from_array_storage") && !body.contains("letmutm="));
+        // The arms' literals keep at most 50 values live: kept.
+        for arm in ["ur5", "rand7"] {
+            let code = crate::Builder::new(arm).generate().expect("generates");
+            let body = mass_matrix_body(&code);
+            assert!(body.contains("from_array_storage") && !body.contains("letmutm="));
+        }
     }
 }
