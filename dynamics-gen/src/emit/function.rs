@@ -150,8 +150,32 @@ fn reorder(
     output_reads: &[ExprId],
     last_use: &mut [usize],
 ) -> Vec<Statement> {
+    let order = demand_schedule(&body, first, output_reads, last_use.len());
+    let mut slots: Vec<Option<Statement>> = body.into_iter().map(Some).collect();
+    let body: Vec<Statement> = order
+        .iter()
+        .map(|&k| slots[k].take().expect("a permutation"))
+        .collect();
+    for (at, s) in body.iter().enumerate() {
+        for &id in &s.reads {
+            let l = &mut last_use[id.index()];
+            if *l != usize::MAX {
+                *l = at;
+            }
+        }
+    }
+    body
+}
+
+/// The order of [`reorder`] (statement indices into `body`) for a graph of `nodes` nodes.
+fn demand_schedule(
+    body: &[Statement],
+    first: &[usize],
+    output_reads: &[ExprId],
+    nodes: usize,
+) -> Vec<usize> {
     use super::schedule::{demand_order, Deps};
-    let mut defined_by = vec![usize::MAX; last_use.len()];
+    let mut defined_by = vec![usize::MAX; nodes];
     for (k, s) in body.iter().enumerate() {
         for &(_, id) in &s.defined {
             defined_by[id.index()] = k;
@@ -169,21 +193,7 @@ fn reorder(
         .copied()
         .chain(output_reads.iter().filter_map(statement))
         .collect();
-    let order = demand_order(&deps, &roots);
-    let mut slots: Vec<Option<Statement>> = body.into_iter().map(Some).collect();
-    let body: Vec<Statement> = order
-        .iter()
-        .map(|&k| slots[k].take().expect("a permutation"))
-        .collect();
-    for (at, s) in body.iter().enumerate() {
-        for &id in &s.reads {
-            let l = &mut last_use[id.index()];
-            if *l != usize::MAX {
-                *l = at;
-            }
-        }
-    }
-    body
+    demand_order(&deps, &roots)
 }
 
 /// `value` with the temporaries (`t0`, `t1`, …, numbered in creation order) renamed in the
@@ -702,9 +712,9 @@ impl FunctionBody<'_> {
         }
     }
 
-    /// For an [`Output::StoredMatrix`], one statement per entry that is not zero,
-    /// `m.data.0[c][r] = value;`, appended to `body` (its reads noted in `last_use`), and
-    /// their indices from the last entry back: the roots of the schedule, so that each store
+    /// For an [`Output::StoredMatrix`], one statement per value that is not +0.0, writing
+    /// every entry that holds it (`m.data.0[c][r] = value;`), appended to `body` (its reads
+    /// noted in `last_use`), and their indices from the last entry back: the roots of the schedule, so that each store
     /// follows the statements it reads and the body is computed from the last entry back.
     /// Empty for any other output, in a batch body, and where the body will be split into
     /// parts (see [`chunked`]), which cannot write into the matrix.
@@ -788,50 +798,27 @@ impl FunctionBody<'_> {
         body: &[Statement],
         last_use: &[usize],
     ) -> usize {
-        use super::schedule::{demand_order, Deps};
-        use std::collections::HashMap;
-        let mut defined_by: HashMap<ExprId, usize> = HashMap::new();
-        for (k, s) in body.iter().enumerate() {
-            for &(_, id) in &s.defined {
-                defined_by.insert(id, k);
-            }
-        }
-        let deps: Vec<Deps> = body
-            .iter()
-            .map(|s| Deps {
-                reads: s
-                    .reads
-                    .iter()
-                    .filter_map(|id| defined_by.get(id).copied())
-                    .collect(),
-            })
-            .collect();
         let (mut scratch, mut outputs) = (last_use.to_vec(), Vec::new());
         for &o in self.outputs {
             self.note_uses(bind, o, usize::MAX, &mut scratch, &mut outputs);
         }
-        let roots: Vec<usize> = outputs
-            .iter()
-            .filter_map(|id| defined_by.get(id).copied())
-            .collect();
-        let order = demand_order(&deps, &roots);
+        let order = demand_schedule(body, &[], &outputs, last_use.len());
         let n = order.len();
         // Each value from the position of its statement to its last reader's (outputs: n).
-        let mut end: HashMap<ExprId, usize> = HashMap::new();
+        let mut end = vec![0usize; last_use.len()];
         for (p, &k) in order.iter().enumerate() {
             for &id in &body[k].reads {
-                end.insert(id, p);
+                end[id.index()] = p;
             }
         }
         for id in outputs {
-            end.insert(id, n);
+            end[id.index()] = n;
         }
         let mut delta = vec![0i64; n + 2];
         for (p, &k) in order.iter().enumerate() {
             for &(_, id) in &body[k].defined {
-                let e = end.get(&id).copied().unwrap_or(p).max(p);
                 delta[p] += 1;
-                delta[e + 1] -= 1;
+                delta[end[id.index()].max(p) + 1] -= 1;
             }
         }
         let (mut live, mut peak) = (0i64, 0i64);
