@@ -37,8 +37,9 @@ pub enum Output {
     Matrix,
     /// One `rows × cols` matrix, outputs row-major, written entry by entry into a zeroed
     /// matrix as soon as each entry is computed, its statements scheduled from the last
-    /// entry back (see [`FunctionBody::stores`]). As [`Output::Matrix`] in a batch body and
-    /// in a body split into parts.
+    /// entry back (see [`FunctionBody::stores`]), where its literal would keep more than
+    /// [`STORED_MIN_LIVE`] values live. As [`Output::Matrix`] otherwise, in a batch body and
+    /// in a body split into parts. The mass matrix, `Ṁ` and `M⁻¹`.
     StoredMatrix,
     /// One scalar (the first output).
     Scalar,
@@ -56,6 +57,10 @@ pub enum Output {
         shapes: [(usize, usize); 4],
         /// How many of `shapes` are used.
         count: usize,
+        /// The first matrix is written entry by entry into a zeroed tuple, as an
+        /// [`Output::StoredMatrix`] is (under the same bound), and the others assigned after
+        /// it.
+        stored_first: bool,
     },
     /// `Option` of one `rows × cols` matrix: the first `2·guards` outputs are pairs
     /// `(d, a)`, and the result is `None` unless every `d > √ε · a` (ε of the scalar type;
@@ -116,13 +121,19 @@ const MAX_BLOCK_LETS: usize = 512;
 /// 7-joint arm) the body stays one function, which the optimiser sees whole.
 pub(crate) const MAX_UNSPLIT_LETS: usize = 4096;
 
-/// An [`Output::StoredMatrix`] is stored entry by entry only when, returned as one literal,
-/// more values than this would be live at once: twice the registers of an AVX-512 copy.
+/// An [`Output::StoredMatrix`] (or the first matrix of an [`Output::Tuple`] with
+/// `stored_first`) is stored entry by entry only when, returned as one literal, more values
+/// than this would be live at once: twice the registers of an AVX-512 copy.
 /// Measured (values live at most as a literal; old → new time, two runs each, see
-/// [`FunctionBody::stores`]): G1 432, −8 %; Solo-12 130, −9 % and −14 %; TALOS' upper body
-/// 186, −0.2 % and −1.5 %; the Panda 50, −5 % and −8 %; Baxter's left arm 47, +7 % and −1 %;
-/// rand7 43, ±1 %; the xArm7 41, +5 % and +14 %; the UR5 22, −4 to +9 %. The bound keeps
-/// every arm measured, the Panda's gain with the others' losses, as a literal.
+/// [`FunctionBody::stores`]). The mass matrix: G1 432, −8 %; Solo-12 130, −9 % and −14 %;
+/// TALOS' upper body 186, −0.2 % and −1.5 %; the Panda 50, −5 % and −8 %; Baxter's left arm
+/// 47, +7 % and −1 %; rand7 43, ±1 %; the xArm7 41, +5 % and +14 %; the UR5 22, −4 to +9 %.
+/// The bound keeps every arm measured, the Panda's gain with the others' losses, as a
+/// literal. Above it (counted with the emitter's own schedule, 2026-11-27): `M⁻¹` the Panda
+/// 69, −4 and −5 %; rand7 66, −3 and −4 %; Solo-12 355, −8 to −10 %; TALOS 386, −10 %. `Ṁ`
+/// the Panda 113 and rand7 107, ±1 %; Solo-12 222, −5 to −18 %; TALOS 345, −12 to −15 %;
+/// G1 589, −6 %. `(M, c + g)`: the Panda 110, −1 %; rand7 113, +2 to +3 % (five runs);
+/// Solo-12 274, ±1 %; TALOS 364, −10 %; G1 646, −5 to −6 %.
 const STORED_MIN_LIVE: usize = 64;
 
 /// The `let` statements of one part of a split body (see [`chunked`]). Measured on a
@@ -630,6 +641,24 @@ impl FunctionBody<'_> {
                 stmts.extend(quote!(let mut m = #ty::zeros();));
                 quote!(m)
             }
+            Output::Tuple { shapes, count, .. } if !stores.is_empty() => {
+                // `m.0` stored entry by entry; the other parts assigned once computed.
+                let part = |(rows, cols): (usize, usize)| FunctionBody {
+                    rows,
+                    cols,
+                    ..*self
+                };
+                let types = shapes[..count].iter().map(|&s| part(s).matrix_type());
+                stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
+                let mut start = shapes[0].0 * shapes[0].1;
+                let rest = shapes[1..count].iter().enumerate().map(|(i, &shape)| {
+                    let field = proc_macro2::Literal::usize_unsuffixed(i + 1);
+                    let value = part(shape).matrix(&bind, &self.outputs[start..]);
+                    start += shape.0 * shape.1;
+                    quote!(m.#field = #value;)
+                });
+                quote!(#(#rest)* m)
+            }
             Output::Matrix | Output::StoredMatrix => self.matrix(&bind, self.outputs),
             Output::Scalar => self.expr(&bind, self.outputs[0]),
             Output::Pose => self.pose(&bind, self.outputs),
@@ -642,7 +671,7 @@ impl FunctionBody<'_> {
                 let items = (0..count).map(|k| self.pose(&bind, &self.outputs[k * 12..]));
                 quote!([#(#items),*])
             }
-            Output::Tuple { shapes, count } => {
+            Output::Tuple { shapes, count, .. } => {
                 let mut start = 0;
                 let items = shapes[..count].iter().map(|&(rows, cols)| {
                     let part = FunctionBody {
@@ -672,11 +701,15 @@ impl FunctionBody<'_> {
                 }
             }
         };
+        // The outputs the stores do not write are read at the end.
+        let stored = if stores.is_empty() {
+            0
+        } else {
+            self.stored_shape().map_or(0, |(rows, cols)| rows * cols)
+        };
         let mut reads = Vec::new();
-        if stores.is_empty() {
-            for &o in self.outputs {
-                self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
-            }
+        for &o in &self.outputs[stored..] {
+            self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
         let mut body = reorder(body, &stores, &reads, &mut last_use);
         let value = renumber(&mut body, &mut bind, value);
@@ -712,12 +745,14 @@ impl FunctionBody<'_> {
         }
     }
 
-    /// For an [`Output::StoredMatrix`], one statement per value that is not +0.0, writing
-    /// every entry that holds it (`m.data.0[c][r] = value;`), appended to `body` (its reads
-    /// noted in `last_use`), and their indices from the last entry back: the roots of the schedule, so that each store
-    /// follows the statements it reads and the body is computed from the last entry back.
-    /// Empty for any other output, in a batch body, and where the body will be split into
-    /// parts (see [`chunked`]), which cannot write into the matrix.
+    /// For an [`Output::StoredMatrix`] (and the first matrix of an [`Output::Tuple`] with
+    /// `stored_first`, `m.0`), one statement per value that is not +0.0, writing every entry
+    /// that holds it (`m.data.0[c][r] = value;`), appended to `body` (its reads noted in
+    /// `last_use`), and their indices from the last entry back: the roots of the schedule, so
+    /// that each store follows the statements it reads and the body is computed from the
+    /// last entry back. Empty for any other output, in a batch body, where the body will be
+    /// split into parts (see [`chunked`]), which cannot write into the matrix, and where the
+    /// literal would keep at most [`STORED_MIN_LIVE`] values live.
     ///
     /// Why, for the mass matrix: returned as one array literal, every entry stays live until
     /// the end, and scheduled from the first entry, the composite inertias of every subtree
@@ -737,15 +772,21 @@ impl FunctionBody<'_> {
         body: &mut Vec<Statement>,
         last_use: &mut [usize],
     ) -> Vec<usize> {
-        let entries = self.rows * self.cols;
+        let Some((rows, cols)) = self.stored_shape() else {
+            return Vec::new();
+        };
+        let entries = rows * cols;
         let splits = self.self_ty.is_some() && body.len() + entries > MAX_UNSPLIT_LETS;
-        if self.output != Output::StoredMatrix
-            || self.lanes.is_some()
+        if self.lanes.is_some()
             || splits
             || self.peak_live_as_literal(bind, body, last_use) <= STORED_MIN_LIVE
         {
             return Vec::new();
         }
+        let place = match self.output {
+            Output::StoredMatrix => quote!(m),
+            _ => quote!(m.0),
+        };
         // The entries of each value (both halves of a symmetric matrix), stored together.
         let mut entries_of: Vec<(ExprId, Vec<usize>)> = Vec::new();
         let mut slot: std::collections::HashMap<ExprId, usize> = std::collections::HashMap::new();
@@ -767,10 +808,10 @@ impl FunctionBody<'_> {
         for (id, ks) in entries_of {
             let places = ks.iter().map(|&k| {
                 let (r, c) = (
-                    proc_macro2::Literal::usize_unsuffixed(k / self.cols),
-                    proc_macro2::Literal::usize_unsuffixed(k % self.cols),
+                    proc_macro2::Literal::usize_unsuffixed(k / cols),
+                    proc_macro2::Literal::usize_unsuffixed(k % cols),
                 );
-                quote!(m.data.0[#c][#r])
+                quote!(#place.data.0[#c][#r])
             });
             let value = self.expr(bind, id);
             let tokens = if ks.len() == 1 || matches!(bind[id.index()], Binding::Named(_)) {
@@ -788,6 +829,20 @@ impl FunctionBody<'_> {
             });
         }
         roots
+    }
+
+    /// The shape of the matrix that [`Self::stores`] may write entry by entry: an
+    /// [`Output::StoredMatrix`]'s, or the first of an [`Output::Tuple`] with `stored_first`.
+    fn stored_shape(&self) -> Option<(usize, usize)> {
+        match self.output {
+            Output::StoredMatrix => Some((self.rows, self.cols)),
+            Output::Tuple {
+                shapes,
+                stored_first: true,
+                ..
+            } => Some(shapes[0]),
+            _ => None,
+        }
     }
 
     /// The most named values live at once in `body` scheduled for [`Output::Matrix`] (from
@@ -1258,10 +1313,63 @@ pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> 
 mod tests {
     /// The dispatched body of `mass_matrix` in `code`, whitespace removed.
     fn mass_matrix_body(code: &str) -> String {
-        let body = &code[code.find("fn mass_matrix_body").expect("a dispatched body")..];
+        body_of(code, "mass_matrix")
+    }
+
+    /// The body of the dispatched function `name`, whitespace removed.
+    fn body_of(code: &str, name: &str) -> String {
+        let at = code
+            .find(&format!("fn {name}_body<"))
+            .expect("a dispatched body");
+        let body = &code[at..];
         body[..body.find("\n    }\n").expect("its end")]
             .split_whitespace()
             .collect()
+    }
+
+    #[test]
+    fn m_inverse_m_dot_and_the_pair_with_many_live_values_are_stored_too() {
+        let solo = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/solo12.urdf"
+        );
+        let code = crate::Builder::new(solo)
+            .floating_base(true)
+            .no_runtime_trait()
+            .functions([
+                "mass_matrix_inverse",
+                "mass_matrix_dot",
+                "mass_matrix_and_bias",
+                "gravity_derivative",
+            ])
+            .generate()
+            .expect("generates");
+        for name in ["mass_matrix_inverse", "mass_matrix_dot"] {
+            let body = body_of(&code, name);
+            assert!(
+                body.contains("letmutm=::nalgebra::SMatrix::<f64,18,18>::zeros();"),
+                "{name}"
+            );
+            assert!(
+                body.ends_with('m') && !body.contains("from_array_storage"),
+                "{name}"
+            );
+        }
+        // The pair: `M` into `m.0` entry by entry, `c + g` assigned after it.
+        let body = body_of(&code, "mass_matrix_and_bias");
+        assert!(body.contains(
+            "letmutm=(::nalgebra::SMatrix::<f64,18,18>::zeros(),::nalgebra::SVector::<f64,18>::zeros(),);"
+        ));
+        let (last, bias) = (
+            body.find("m.0.data.0[17][17]=").expect("the last entry"),
+            body.find("m.1=::nalgebra::SVector::<f64,18,>::from_array_storage(")
+                .expect("the bias"),
+        );
+        assert!(last < bias && body.ends_with('m'));
+        assert_eq!(body.matches("from_array_storage").count(), 1);
+        // `∂g/∂q` stays a literal (stored, rand7's was slower).
+        let body = body_of(&code, "gravity_derivative");
+        assert!(body.contains("from_array_storage") && !body.contains("letmutm="));
     }
 
     #[test]
