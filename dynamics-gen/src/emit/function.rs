@@ -132,7 +132,7 @@ pub(crate) const MAX_UNSPLIT_LETS: usize = 4096;
 /// literal. Above it (counted with the emitter's own schedule, 2026-11-27): `M⁻¹` the Panda
 /// 69, −4 and −5 %; rand7 66, −3 and −4 %; Solo-12 355, −8 to −10 %; TALOS 386, −10 %. `Ṁ`
 /// the Panda 113 and rand7 107, ±1 %; Solo-12 222, −5 to −18 %; TALOS 345, −12 to −15 %;
-/// G1 589, −6 %. `(M, c + g)`: the Panda 110, −1 %; rand7 113, +2 to +3 % (five runs);
+/// G1 589, −6 %. `(M, c + g)`: the Panda 110, −1 %; rand7 113, +1 to +3.5 % (six runs);
 /// Solo-12 274, ±1 %; TALOS 364, −10 %; G1 646, −5 to −6 %.
 const STORED_MIN_LIVE: usize = 64;
 
