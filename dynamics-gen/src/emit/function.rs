@@ -641,24 +641,6 @@ impl FunctionBody<'_> {
                 stmts.extend(quote!(let mut m = #ty::zeros();));
                 quote!(m)
             }
-            Output::Tuple { shapes, count, .. } if !stores.is_empty() => {
-                // `m.0` stored entry by entry; the other parts assigned once computed.
-                let part = |(rows, cols): (usize, usize)| FunctionBody {
-                    rows,
-                    cols,
-                    ..*self
-                };
-                let types = shapes[..count].iter().map(|&s| part(s).matrix_type());
-                stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
-                let mut start = shapes[0].0 * shapes[0].1;
-                let rest = shapes[1..count].iter().enumerate().map(|(i, &shape)| {
-                    let field = proc_macro2::Literal::usize_unsuffixed(i + 1);
-                    let value = part(shape).matrix(&bind, &self.outputs[start..]);
-                    start += shape.0 * shape.1;
-                    quote!(m.#field = #value;)
-                });
-                quote!(#(#rest)* m)
-            }
             Output::Matrix | Output::StoredMatrix => self.matrix(&bind, self.outputs),
             Output::Scalar => self.expr(&bind, self.outputs[0]),
             Output::Pose => self.pose(&bind, self.outputs),
@@ -672,18 +654,31 @@ impl FunctionBody<'_> {
                 quote!([#(#items),*])
             }
             Output::Tuple { shapes, count, .. } => {
-                let mut start = 0;
-                let items = shapes[..count].iter().map(|&(rows, cols)| {
-                    let part = FunctionBody {
-                        rows,
-                        cols,
-                        ..*self
-                    };
-                    let t = part.matrix(&bind, &self.outputs[start..]);
-                    start += rows * cols;
-                    t
-                });
-                quote!((#(#items),*))
+                let part = |(rows, cols): (usize, usize)| FunctionBody {
+                    rows,
+                    cols,
+                    ..*self
+                };
+                // Each part's literal, from its first output on; with stores, the first part
+                // is written into `m.0` and the others are assigned after it.
+                let first = usize::from(!stores.is_empty());
+                let mut start: usize = shapes[..first].iter().map(|s| s.0 * s.1).sum();
+                let items: Vec<TokenStream> = shapes[first..count]
+                    .iter()
+                    .map(|&shape| {
+                        let t = part(shape).matrix(&bind, &self.outputs[start..]);
+                        start += shape.0 * shape.1;
+                        t
+                    })
+                    .collect();
+                if stores.is_empty() {
+                    quote!((#(#items),*))
+                } else {
+                    let types = shapes[..count].iter().map(|&s| part(s).matrix_type());
+                    stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
+                    let fields = (1..count).map(proc_macro2::Literal::usize_unsuffixed);
+                    quote!(#(m.#fields = #items;)* m)
+                }
             }
             Output::Checked { guards } => {
                 let tol = sqrt_epsilon(self.scalar);
@@ -705,7 +700,7 @@ impl FunctionBody<'_> {
         let stored = if stores.is_empty() {
             0
         } else {
-            self.stored_shape().map_or(0, |(rows, cols)| rows * cols)
+            self.stored_place().map_or(0, |(_, rows, cols)| rows * cols)
         };
         let mut reads = Vec::new();
         for &o in &self.outputs[stored..] {
@@ -772,7 +767,7 @@ impl FunctionBody<'_> {
         body: &mut Vec<Statement>,
         last_use: &mut [usize],
     ) -> Vec<usize> {
-        let Some((rows, cols)) = self.stored_shape() else {
+        let Some((place, rows, cols)) = self.stored_place() else {
             return Vec::new();
         };
         let entries = rows * cols;
@@ -783,10 +778,6 @@ impl FunctionBody<'_> {
         {
             return Vec::new();
         }
-        let place = match self.output {
-            Output::StoredMatrix => quote!(m),
-            _ => quote!(m.0),
-        };
         // The entries of each value (both halves of a symmetric matrix), stored together.
         let mut entries_of: Vec<(ExprId, Vec<usize>)> = Vec::new();
         let mut slot: std::collections::HashMap<ExprId, usize> = std::collections::HashMap::new();
@@ -831,16 +822,17 @@ impl FunctionBody<'_> {
         roots
     }
 
-    /// The shape of the matrix that [`Self::stores`] may write entry by entry: an
-    /// [`Output::StoredMatrix`]'s, or the first of an [`Output::Tuple`] with `stored_first`.
-    fn stored_shape(&self) -> Option<(usize, usize)> {
+    /// The matrix that [`Self::stores`] may write entry by entry, its place in the result and
+    /// its shape: an [`Output::StoredMatrix`] (`m`), or the first of an [`Output::Tuple`] with
+    /// `stored_first` (`m.0`).
+    fn stored_place(&self) -> Option<(TokenStream, usize, usize)> {
         match self.output {
-            Output::StoredMatrix => Some((self.rows, self.cols)),
+            Output::StoredMatrix => Some((quote!(m), self.rows, self.cols)),
             Output::Tuple {
                 shapes,
                 stored_first: true,
                 ..
-            } => Some(shapes[0]),
+            } => Some((quote!(m.0), shapes[0].0, shapes[0].1)),
             _ => None,
         }
     }
