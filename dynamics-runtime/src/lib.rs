@@ -30,7 +30,11 @@
 
 use nalgebra::{SMatrix, SVector, Scalar};
 
+#[cfg(target_arch = "x86_64")]
+pub mod avx512;
 mod lanes;
+#[cfg(target_arch = "x86_64")]
+pub use avx512::Avx512;
 pub use lanes::Lanes;
 
 /// Rigid-body dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)` of a robot (Modern Robotics, chapter 8),

@@ -93,7 +93,7 @@ pub fn batch_functions(
         .and_then(|n| syn::parse_str::<Ident>(n).ok());
     let mut out = TokenStream::new();
     // Which `Lanes` helpers the vectorised bodies call.
-    let (mut fuses, mut trig) = (false, false);
+    let (mut fuses, mut trig, mut any_avx512) = (false, false, false);
     for f in fns {
         if !emitted(f.name) {
             continue;
@@ -163,8 +163,16 @@ pub fn batch_functions(
                 } else {
                     format!("where the CPU's vectors are wide (on x86-64 with AVX-512 or AVX2 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
                 };
+                // The dispatch gives a body of this size an AVX-512 copy of its own (`zmm`).
+                let large = if !options.no_std && options.cpu_dispatch && ops >= super::zmm::MIN_OPS
+                {
+                    format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512`) where `B` is a multiple of {avx512}.", super::zmm::DOC_MARK)
+                } else {
+                    String::new()
+                };
+                any_avx512 |= !large.is_empty();
                 let how = format!(
-                    " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}). Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
+                    " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}).{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
                     options.scalar.as_str()
                 );
                 // Never inlined: where it is not dispatched (`-C target-cpu=native`, other
@@ -219,7 +227,13 @@ pub fn batch_functions(
         });
     }
     if let Some(runtime) = runtime {
-        out.extend(lanes_helpers(options.scalar, runtime, fuses, trig));
+        out.extend(lanes_helpers(
+            options.scalar,
+            runtime,
+            fuses,
+            trig,
+            any_avx512,
+        ));
     }
     out
 }
@@ -297,6 +311,7 @@ fn lanes_helpers(
     runtime: &TokenStream,
     fuses: bool,
     trig: bool,
+    avx512: bool,
 ) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let lanes = quote!(#runtime::Lanes<#t, B>);
@@ -366,7 +381,34 @@ fn lanes_helpers(
             }
         }
     });
-    quote!(#mul_add #sin_cos)
+    // The operands and the token of the AVX-512 copies of large batch bodies (`super::zmm`),
+    // which exist only where the dispatch made them.
+    let avx512 = avx512.then(|| {
+        quote! {
+            /// The lanes of `x`: `x` itself, or a scalar on every lane (the operands of the
+            /// AVX-512 batch bodies' instructions).
+            #[inline(always)]
+            #[allow(dead_code)]
+            fn lanes<const B: usize>(x: impl Into<#lanes>) -> #lanes {
+                x.into()
+            }
+
+            /// The runtime's `Avx512` token, for the AVX-512 batch bodies.
+            ///
+            /// # Safety
+            ///
+            /// The CPU has AVX-512 F and DQ and FMA (which `has_avx512` checks, where the
+            /// functions are dispatched).
+            #[cfg(target_arch = "x86_64")]
+            #[inline(always)]
+            #[allow(dead_code, unsafe_code)]
+            unsafe fn lanes_avx512() -> #runtime::Avx512 {
+                // SAFETY: the function's contract.
+                unsafe { #runtime::Avx512::new_unchecked() }
+            }
+        }
+    });
+    quote!(#mul_add #sin_cos #avx512)
 }
 
 #[cfg(test)]

@@ -415,6 +415,12 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
     let mid = format_ident!("{}_avx2", name);
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
+    // A large batch body's AVX-512 copy: its lane arithmetic as AVX-512 instructions.
+    let avx512_body = item[..p]
+        .iter()
+        .any(|t| t.to_string().contains(super::zmm::DOC_MARK))
+        .then(|| super::zmm::avx512_body(&fused))
+        .flatten();
     let cfg = dispatch_cfg();
     let avx2 = avx2_cond();
     let avx2_cfg = avx2_cfg();
@@ -476,6 +482,43 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
     } else {
         (portable_body, quote!())
     };
+    let body_z = format_ident!("{}_body_avx512", name);
+    let (fast_call, fast_body) = match avx512_body {
+        Some(z_body) => {
+            let doc = format!(
+                " The body of [`Self::{fast}`]: [`Self::{body_fn}`] with its lane arithmetic \
+                 as AVX-512 instructions (the runtime's `Avx512`)."
+            );
+            let wide = contains_ident(&z_body, "WIDE").then(|| {
+                quote!(
+                    const WIDE: bool = true;
+                )
+            });
+            (
+                quote!(unsafe { self.#body_z #fast_turbofish (#(#arg_names),*) }),
+                quote! {
+                    #[doc = #doc]
+                    #[doc = ""]
+                    #[doc = " # Safety"]
+                    #[doc = ""]
+                    #[doc = " The CPU has the features [`Self::has_avx512`] checks."]
+                    #cfg
+                    #[inline(always)]
+                    #[allow(unsafe_code)]
+                    unsafe fn #body_z #fast_generics (#args) #ret {
+                        #wide
+                        // SAFETY: the function's contract: the AVX-512 copy's features.
+                        let z = unsafe { Self::lanes_avx512() };
+                        #z_body
+                    }
+                },
+            )
+        }
+        None => (
+            quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)),
+            quote!(),
+        ),
+    };
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -502,8 +545,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
         unsafe extern "C" fn #fast #fast_generics (#args) #ret {
-            self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)
+            #fast_call
         }
+
+        #fast_body
 
         #[doc = #mid_doc]
         #avx2_cfg
@@ -708,11 +753,14 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                     }
                     _ => None,
                 };
+                // The angles themselves widened too: a mimic joint's `m·q + o` is a
+                // `mul_add`, fused in the copies as it is in the batch bodies' angles (left
+                // as written, the single call and its batch lane differed in the last bits).
                 let args = match (k.is_some(), tokens.peek()) {
                     (true, Some(TokenTree::Group(g)))
                         if g.delimiter() == Delimiter::Parenthesis =>
                     {
-                        Some(g.stream())
+                        Some(wide_body(g.stream(), used))
                     }
                     _ => None,
                 };
@@ -800,6 +848,43 @@ mod tests {
                 group.len()
             );
         }
+    }
+
+    #[test]
+    fn large_batch_bodies_get_an_avx512_body_of_instructions() {
+        let solo = crate::Builder::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/solo12.urdf"
+        ))
+        .floating_base(true)
+        .generate()
+        .expect("generates");
+        // Solo-12's inverse dynamics batch (1,310 operations): its AVX-512 copy runs a body of
+        // token methods, made `unsafe` and given the token at its top.
+        let k = solo
+            .find("unsafe fn inverse_dynamics_batch_body_avx512<const B: usize>(")
+            .expect("the AVX-512 body");
+        let body = &solo[k..k + solo[k..].find("\n    }\n").expect("its end")];
+        // prettyplease breaks method chains over lines: compare without whitespace.
+        let body: String = body.split_whitespace().collect();
+        assert!(body.contains("letz=unsafe{Self::lanes_avx512()};"));
+        for method in ["z.mul_add(", "z.add(", "z.sub(", "z.mul(", "z.neg("] {
+            assert!(body.contains(method), "{method}");
+        }
+        assert!(body.matches("lett").count() > 100);
+        assert!(
+            !body.contains('+') && !body.contains('*'),
+            "an operator left"
+        );
+        assert!(
+            solo.contains("unsafe { self.inverse_dynamics_batch_body_avx512::<B>(q, qd, qdd) }")
+        );
+        assert!(solo.contains("unsafe fn lanes_avx512()"));
+        // Its mass matrix and gravity batches are below the bound, as is everything of the
+        // UR5's: the vectoriser's code, and no token.
+        assert!(!solo.contains("gravity_batch_body_avx512"));
+        let ur5 = crate::Builder::new("ur5").generate().expect("generates");
+        assert!(!ur5.contains("_batch_body_avx512") && !ur5.contains("lanes_avx512"));
     }
 
     #[test]

@@ -17,6 +17,7 @@ pub mod regressor;
 pub mod schedule;
 pub mod text;
 pub mod trig;
+pub mod zmm;
 
 use crate::error::Error;
 use crate::expand::kinematics::{expand_kinematics, Kinematics};

@@ -1,0 +1,190 @@
+//! The AVX-512 copy of a large batch body, each `Lanes` operation one AVX-512 instruction.
+//!
+//! A batch body ([`super::batch`]) is the single-state code with every value a `Lanes<T,
+//! B>`, whose operators are loops over the `B` lanes. The optimiser fully unrolls those
+//! loops early, and its SLP vectoriser must then rebuild each operation's lanes into a vector
+//! instruction. On bodies of a thousand operations and more it rebuilds part of them only:
+//! the AVX-512 copy of Solo-12's inverse dynamics batch (`B` = 8, 1,310 operations) held
+//! 4,864 instructions, 482 of them scalar and 1,018 on 256-bit registers.
+//!
+//! So the AVX-512 copy of such a body gets a body of its own, `X_body_avx512`: the same
+//! statements, with every `a + b`, `a − b`, `a · b`, `a / b`, `−a` and fused multiply-add
+//! of lanes a method of the runtime's `Avx512` token (`z.add(a, b)`, …), which writes one
+//! AVX-512 instruction when `B` lanes fill a register (8 `f64`, 16 `f32`) and the operator
+//! otherwise. The token is made from the `unsafe` `Avx512::new_unchecked` once, at the top of
+//! the body, which is itself an `unsafe fn` called only by the AVX-512 copy (after the
+//! run-time check that chose it). Each method gives its operator's bits, so a state's result
+//! is still the single-state function's bit for bit.
+//!
+//! Measured (scratch harness, default profile, `B` = 8 against 8 single calls of the
+//! AVX-512 copy, per state, two runs): Solo-12's inverse dynamics 118 → 82 ns (1.42× →
+//! 1.98× single calls), Talos' upper body 182 → 140 ns (1.42× → 1.85×). Small bodies, which
+//! the vectoriser handles whole, lost a little (the UR5's inverse dynamics 22.7 → 25.6 ns,
+//! the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
+
+use proc_macro2::TokenStream;
+use quote::quote;
+use std::collections::HashSet;
+use syn::visit_mut::{self, VisitMut};
+use syn::{parse_quote, BinOp, Expr, GenericArgument, Pat, UnOp};
+
+/// The fewest lane operations (after inlining) for a batch body to get its AVX-512 copy of
+/// instructions: the UR5's and the Panda's inverse dynamics (about 420 and 850) keep the
+/// vectoriser's, Solo-12's (1,310) gets it.
+pub const MIN_OPS: usize = 1000;
+
+/// The words of a batch function's doc comment that ask the dispatch for the AVX-512 body
+/// ([`super::batch`] writes them for bodies of at least [`MIN_OPS`] operations).
+pub const DOC_MARK: &str = "its AVX-512 copy computes each operation as one AVX-512 instruction";
+
+/// The statements of `body` (a batch body in its dispatched `WIDE` form) with its lane
+/// arithmetic on the token `z`, or `None` when it does not parse as a block.
+///
+/// Arithmetic on scalars alone (the robot's constants, run-time parameters such as
+/// `gravity0`, bound from `self`) stays as it is; a scalar operand of lane arithmetic is
+/// spread over the lanes (`Self::lanes(x)`, as the operators do).
+pub fn avx512_body(body: &TokenStream) -> Option<TokenStream> {
+    let mut block: syn::Block = syn::parse2(quote!({ #body })).ok()?;
+    let mut rewrite = Rewrite {
+        scalars: HashSet::new(),
+    };
+    rewrite.visit_block_mut(&mut block);
+    let stmts = &block.stmts;
+    Some(quote!(#(#stmts)*))
+}
+
+/// The operator-to-method rewrite.
+struct Rewrite {
+    /// The locals that hold scalars (not lanes).
+    scalars: HashSet<String>,
+}
+
+impl Rewrite {
+    /// Whether `e` is a scalar: literals, `self`'s fields, scalar locals, and arithmetic on
+    /// those alone. Everything else in a batch body is lanes (calls, the rewritten methods).
+    fn scalar(&self, e: &Expr) -> bool {
+        match e {
+            Expr::Lit(_) => true,
+            Expr::Paren(p) => self.scalar(&p.expr),
+            Expr::Unary(u) => self.scalar(&u.expr),
+            Expr::Binary(b) => self.scalar(&b.left) && self.scalar(&b.right),
+            Expr::Field(f) => self.scalar(&f.base),
+            Expr::Index(i) => self.scalar(&i.expr),
+            Expr::Path(p) => p
+                .path
+                .get_ident()
+                .is_some_and(|i| i == "self" || self.scalars.contains(&i.to_string())),
+            _ => false,
+        }
+    }
+
+    /// `e` as lanes: spread over them if it is a scalar.
+    fn lanes(&self, e: &Expr) -> Expr {
+        if self.scalar(e) {
+            parse_quote!(Self::lanes(#e))
+        } else {
+            e.clone()
+        }
+    }
+}
+
+/// The names a `let` pattern binds (identifiers, and those in array patterns).
+fn bound(p: &Pat, out: &mut Vec<String>) {
+    match p {
+        Pat::Ident(i) => out.push(i.ident.to_string()),
+        Pat::Slice(s) => s.elems.iter().for_each(|p| bound(p, out)),
+        Pat::Type(t) => bound(&t.pat, out),
+        _ => {}
+    }
+}
+
+impl VisitMut for Rewrite {
+    // Const generic arguments (`{ Self::wide_lanes(K) }`) are not lane arithmetic.
+    fn visit_generic_argument_mut(&mut self, _: &mut GenericArgument) {}
+
+    fn visit_local_mut(&mut self, local: &mut syn::Local) {
+        visit_mut::visit_local_mut(self, local);
+        if local.init.as_ref().is_some_and(|i| self.scalar(&i.expr)) {
+            let mut names = Vec::new();
+            bound(&local.pat, &mut names);
+            self.scalars.extend(names);
+        }
+    }
+
+    fn visit_expr_mut(&mut self, e: &mut Expr) {
+        visit_mut::visit_expr_mut(self, e);
+        if self.scalar(e) {
+            return;
+        }
+        let new: Expr = match e {
+            Expr::Binary(b) => {
+                let method = match b.op {
+                    BinOp::Add(_) => quote!(add),
+                    BinOp::Sub(_) => quote!(sub),
+                    BinOp::Mul(_) => quote!(mul),
+                    BinOp::Div(_) => quote!(div),
+                    _ => return,
+                };
+                let (l, r) = (self.lanes(&b.left), self.lanes(&b.right));
+                parse_quote!(z.#method(#l, #r))
+            }
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
+                let x = &u.expr;
+                parse_quote!(z.neg(#x))
+            }
+            Expr::Call(c) if is_mul_add_lanes(&c.func) => {
+                let args = c.args.iter().map(|a| self.lanes(a));
+                parse_quote!(z.mul_add(#(#args),*))
+            }
+            _ => return,
+        };
+        *e = new;
+    }
+}
+
+/// Whether `f` is `Self::mul_add_lanes_with::<…>`, the dispatched body's fused multiply-add
+/// of lanes (fused in every copy that runs this body).
+fn is_mul_add_lanes(f: &Expr) -> bool {
+    let Expr::Path(p) = f else {
+        return false;
+    };
+    let segments: Vec<String> = p
+        .path
+        .segments
+        .iter()
+        .map(|s| s.ident.to_string())
+        .collect();
+    segments == ["Self", "mul_add_lanes_with"]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rewrite(lines: impl Fn(usize) -> String) -> Option<String> {
+        let body: String = (0..3).map(lines).collect();
+        avx512_body(&body.parse().unwrap()).map(|t| t.to_string())
+    }
+
+    #[test]
+    fn lane_operators_become_token_methods_and_scalars_stay() {
+        let head = "let g = self.gravity; let [p0, p1] = self.payload; let k = g * -2.0;";
+        let out = rewrite(|i| {
+            let pre = if i == 0 { head } else { "" };
+            format!("{pre} let t{i} = Self::mul_add_lanes_with::<_, WIDE>(Lanes::from(x), Lanes::from(-2.5_f64), Lanes::from(y)) + -z{i} * (p0 * k);")
+        })
+        .unwrap();
+        assert!(
+            out.contains("let k = g * - 2.0 ;"),
+            "scalar arithmetic stays"
+        );
+        assert!(out.contains("z . add (z . mul_add (Lanes :: from (x) , Lanes :: from (- 2.5_f64) , Lanes :: from (y)) , z . mul (z . neg (z0) , Self :: lanes ((p0 * k))))"), "{}", &out[..600]);
+        assert!(!out.contains(" + "));
+    }
+
+    #[test]
+    fn const_generic_arguments_are_left_alone() {
+        let out = rewrite(|i| format!("let t{i} = Self::f::<{{ K * 2 }}>(a{i}) + b;")).unwrap();
+        assert!(out.contains("{ K * 2 }"));
+    }
+}
