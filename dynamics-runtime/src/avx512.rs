@@ -9,7 +9,7 @@
 //! per state (single calls: 163 ns). The generated AVX-512 copy of a large batch body calls
 //! the methods of an [`Avx512`] token instead of the operators.
 //!
-//! The token proves that the CPU has AVX-512 F and DQ: it is made only by the `unsafe`
+//! The token proves that the CPU has AVX-512 F and DQ and FMA: it is made only by the `unsafe`
 //! [`Avx512::new_unchecked`], which the generated code calls in its AVX-512 copies, after
 //! the run-time check that chose them. Every method gives the bits of the operator it
 //! replaces (IEEE operations are exactly rounded either way; `mul_add` rounds once, as
@@ -294,59 +294,57 @@ mod tests {
         })
     }
 
+    /// Every method against its operator, bit for bit; `fused` is the scalar `mul_add`.
+    fn check<T, const B: usize>(
+        z: Avx512,
+        a: Lanes<T, B>,
+        b: Lanes<T, B>,
+        c: Lanes<T, B>,
+        fused: fn(T, T, T) -> T,
+    ) where
+        T: super::Element + Into<f64>,
+        Lanes<T, B>: core::ops::Add<Output = Lanes<T, B>>
+            + core::ops::Sub<Output = Lanes<T, B>>
+            + core::ops::Mul<Output = Lanes<T, B>>
+            + core::ops::Div<Output = Lanes<T, B>>
+            + core::ops::Neg<Output = Lanes<T, B>>,
+    {
+        assert!(same(z.add(a, b), a + b));
+        assert!(same(z.sub(a, b), a - b));
+        assert!(same(z.mul(a, b), a * b));
+        assert!(same(z.div(a, b), a / b));
+        assert!(same(z.neg(a), -a));
+        let want = Lanes(core::array::from_fn(|l| fused(a.0[l], b.0[l], c.0[l])));
+        assert!(same(z.mul_add(a, b, c), want));
+    }
+
     #[test]
     fn the_instructions_give_the_operators_bits() {
         let Some(z) = token() else {
             std::eprintln!("no AVX-512 on this CPU: nothing to compare");
             return;
         };
+        fn lanes<const B: usize>(seed: u64) -> [Lanes<f64, B>; 3] {
+            [0, 100, 200].map(|d| Lanes(values::<B>(seed + d)))
+        }
+        fn narrow<const B: usize>(seed: u64) -> [Lanes<f32, B>; 3] {
+            lanes::<B>(seed).map(|l| Lanes(l.0.map(|v| v as f32)))
+        }
         for seed in 0..50 {
-            let (a, b, c) = (
-                Lanes(values::<8>(seed)),
-                Lanes(values::<8>(seed + 100)),
-                Lanes(values::<8>(seed + 200)),
-            );
-            assert!(same(z.add(a, b), a + b));
-            assert!(same(z.sub(a, b), a - b));
-            assert!(same(z.mul(a, b), a * b));
-            assert!(same(z.div(a, b), a / b));
-            assert!(same(z.neg(a), -a));
-            let fused = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-            assert!(same(z.mul_add(a, b, c), fused));
-            // f32: 16 lanes to a register.
-            let f = |x: [f64; 16]| Lanes(x.map(|v| v as f32));
-            let (a, b, c) = (
-                f(values(seed)),
-                f(values(seed + 100)),
-                f(values(seed + 200)),
-            );
-            assert!(same(z.add(a, b), a + b));
-            assert!(same(z.sub(a, b), a - b));
-            assert!(same(z.mul(a, b), a * b));
-            assert!(same(z.div(a, b), a / b));
-            assert!(same(z.neg(a), -a));
-            let fused = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-            assert!(same(z.mul_add(a, b, c), fused));
-            // Two registers' worth.
-            let (a, b, c) = (
-                Lanes(values::<16>(seed)),
-                Lanes(values::<16>(seed + 1)),
-                Lanes(values::<16>(seed + 2)),
-            );
-            assert!(same(z.sub(a, b), a - b));
-            assert!(same(z.div(a, b), a / b));
-            let fused = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-            assert!(same(z.mul_add(a, b, c), fused));
-            // Lanes that do not fill a register: the operators, and the scalar FMA.
-            let (a, b, c) = (
-                Lanes(values::<4>(seed)),
-                Lanes(values::<4>(seed + 1)),
-                Lanes(values::<4>(seed + 2)),
-            );
-            assert!(same(z.add(a, b), a + b));
-            assert!(same(z.neg(a), -a));
-            let fused = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-            assert!(same(z.mul_add(a, b, c), fused));
+            // One register (8 `f64`, 16 `f32`), two, and lanes that do not fill one (the
+            // operators, and the scalar FMA).
+            let [a, b, c] = lanes::<8>(seed);
+            check(z, a, b, c, f64::mul_add);
+            let [a, b, c] = lanes::<16>(seed);
+            check(z, a, b, c, f64::mul_add);
+            let [a, b, c] = lanes::<4>(seed);
+            check(z, a, b, c, f64::mul_add);
+            let [a, b, c] = narrow::<16>(seed);
+            check(z, a, b, c, f32::mul_add);
+            let [a, b, c] = narrow::<32>(seed);
+            check(z, a, b, c, f32::mul_add);
+            let [a, b, c] = narrow::<4>(seed);
+            check(z, a, b, c, f32::mul_add);
         }
     }
 }

@@ -30,57 +30,57 @@ macro_rules! batch {
         check::<{ 64 / std::mem::size_of::<$s>() }>();
         CHECKED.fetch_add(1, Ordering::SeqCst);
         fn check<const B: usize>() {
-        use dynamics_tests::generated::$m::Robot;
-        let r = Robot::DEFAULT;
-        let mut q: [SVector<$s, $nq>; B] =
-            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.3 + 0.1 * i as $s - 0.45 * l as $s));
-        // One angle beyond the polynomial kernel's range (10⁶ in f64, 10⁴ in f32): that lane
-        // takes the fallback, the others not.
-        q[2][$nq - 1] = 2.0e6;
-        let qd: [SVector<$s, $nv>; B] =
-            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.5 - 0.2 * i as $s + 0.3 * l as $s));
-        let x: [SVector<$s, $nv>; B] =
-            std::array::from_fn(|l| SVector::from_fn(|i, _| 0.7 * i as $s - 1.0 + l as $s));
-        let tau = r.inverse_dynamics_batch(&q, &qd, &x);
-        let qdd = r.forward_dynamics_batch(&q, &qd, &x);
-        let m = r.mass_matrix_batch(&q);
-        let g = r.gravity_batch(&q);
-        for l in 0..B {
-            let pairs = [
-                (
-                    "inverse_dynamics",
-                    tau[l].map(f64::from),
-                    r.inverse_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
-                ),
-                (
-                    "forward_dynamics",
-                    qdd[l].map(f64::from),
-                    r.forward_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
-                ),
-                (
-                    "gravity",
-                    g[l].map(f64::from),
-                    r.gravity(&q[l]).map(f64::from),
-                ),
-            ];
-            for (name, a, b) in pairs {
+            use dynamics_tests::generated::$m::Robot;
+            let r = Robot::DEFAULT;
+            let mut q: [SVector<$s, $nq>; B] =
+                std::array::from_fn(|l| SVector::from_fn(|i, _| 0.3 + 0.1 * i as $s - 0.45 * l as $s));
+            // One angle beyond the polynomial kernel's range (10⁶ in f64, 10⁴ in f32): that lane
+            // takes the fallback, the others not.
+            q[2][$nq - 1] = 2.0e6;
+            let qd: [SVector<$s, $nv>; B] =
+                std::array::from_fn(|l| SVector::from_fn(|i, _| 0.5 - 0.2 * i as $s + 0.3 * l as $s));
+            let x: [SVector<$s, $nv>; B] =
+                std::array::from_fn(|l| SVector::from_fn(|i, _| 0.7 * i as $s - 1.0 + l as $s));
+            let tau = r.inverse_dynamics_batch(&q, &qd, &x);
+            let qdd = r.forward_dynamics_batch(&q, &qd, &x);
+            let m = r.mass_matrix_batch(&q);
+            let g = r.gravity_batch(&q);
+            for l in 0..B {
+                let pairs = [
+                    (
+                        "inverse_dynamics",
+                        tau[l].map(f64::from),
+                        r.inverse_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
+                    ),
+                    (
+                        "forward_dynamics",
+                        qdd[l].map(f64::from),
+                        r.forward_dynamics(&q[l], &qd[l], &x[l]).map(f64::from),
+                    ),
+                    (
+                        "gravity",
+                        g[l].map(f64::from),
+                        r.gravity(&q[l]).map(f64::from),
+                    ),
+                ];
+                for (name, a, b) in pairs {
+                    assert!(
+                        a == b,
+                        "{}: {name}_batch lane {l}: {a} against {b} (relative difference {:e})",
+                        stringify!($m),
+                        rel(&a, &b)
+                    );
+                }
+                let (a, b) = (m[l].map(f64::from), r.mass_matrix(&q[l]).map(f64::from));
                 assert!(
                     a == b,
-                    "{}: {name}_batch lane {l}: {a} against {b} (relative difference {:e})",
+                    "{}: mass_matrix_batch lane {l}: {a} against {b} (relative difference {:e})",
                     stringify!($m),
                     rel(&a, &b)
                 );
             }
-            let (a, b) = (m[l].map(f64::from), r.mass_matrix(&q[l]).map(f64::from));
-            assert!(
-                a == b,
-                "{}: mass_matrix_batch lane {l}: {a} against {b} (relative difference {:e})",
-                stringify!($m),
-                rel(&a, &b)
-            );
-        }
-        // Not vacuous: the states differ, and so do the results.
-        assert!(tau[0] != tau[1] && qdd[0] != qdd[2], "{}", stringify!($m));
+            // Not vacuous: the states differ, and so do the results.
+            assert!(tau[0] != tau[1] && qdd[0] != qdd[2], "{}", stringify!($m));
         }
     }};
 }

@@ -16,11 +16,12 @@
 //! run-time check that chose it). Each method gives its operator's bits, so a state's result
 //! is still the single-state function's bit for bit.
 //!
-//! Measured (scratch harness, default profile, `B` = 8 against 8 single calls of the
-//! AVX-512 copy, per state, two runs): Solo-12's inverse dynamics 118 → 82 ns (1.42× →
-//! 1.98× single calls), Talos' upper body 182 → 140 ns (1.42× → 1.85×). Small bodies, which
-//! the vectoriser handles whole, lost a little (the UR5's inverse dynamics 22.7 → 25.6 ns,
-//! the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
+//! Measured (old and new generated code in one binary, default profile, `B` = 8 against 8
+//! single calls, per state, two runs; README "Batches of states"): Solo-12's inverse
+//! dynamics 121.7–123.4 → 86.8–88.7 ns (1.27–1.29× → 1.77–1.80× single calls), Talos' upper
+//! body 184.6–186.1 → 126.1–127.4 ns (1.36–1.39× → 2.00–2.03×). Small bodies, which the
+//! vectoriser handles whole, lost a little in a first scratch version (the UR5's inverse
+//! dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -29,7 +30,7 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{parse_quote, BinOp, Expr, GenericArgument, Pat, UnOp};
 
 /// The fewest lane operations (after inlining) for a batch body to get its AVX-512 copy of
-/// instructions: the UR5's and the Panda's inverse dynamics (about 420 and 850) keep the
+/// instructions: the UR5's and the Panda's inverse dynamics (297 and 687) keep the
 /// vectoriser's, Solo-12's (1,310) gets it.
 pub const MIN_OPS: usize = 1000;
 
