@@ -156,8 +156,13 @@ element!(
 );
 
 impl Avx512 {
-    /// `op` on whole registers of lanes, or `None` where `B` lanes do not fill a whole number
-    /// of registers.
+    /// Whether `B` lanes fill a whole number of registers (the instructions' case).
+    #[inline(always)]
+    const fn whole<T: Element, const B: usize>() -> bool {
+        B != 0 && B.is_multiple_of(T::PER_REGISTER)
+    }
+
+    /// `op` on whole registers of lanes: only where [`Self::whole`].
     #[inline(always)]
     fn apply<T: Element, const B: usize>(
         self,
@@ -165,25 +170,23 @@ impl Avx512 {
         a: &Lanes<T, B>,
         b: &Lanes<T, B>,
         c: &Lanes<T, B>,
-    ) -> Option<Lanes<T, B>> {
-        if B == 0 || !B.is_multiple_of(T::PER_REGISTER) {
-            return None;
-        }
+    ) -> Lanes<T, B> {
         let mut out = *a;
-        for k in (0..B).step_by(T::PER_REGISTER) {
-            // SAFETY: `self` proves the features; lanes `k..k + PER_REGISTER` (64 bytes) are
-            // within the `B` of each array, as `B` is a multiple of `PER_REGISTER`.
-            unsafe {
-                T::op(
-                    op,
-                    a.0.as_ptr().add(k),
-                    b.0.as_ptr().add(k),
-                    c.0.as_ptr().add(k),
-                    out.0.as_mut_ptr().add(k),
-                );
+        let (pa, pb, pc, po) = (a.0.as_ptr(), b.0.as_ptr(), c.0.as_ptr(), out.0.as_mut_ptr());
+        if B == T::PER_REGISTER {
+            // SAFETY: `self` proves the features; each array is one register's 64 bytes.
+            unsafe { T::op(op, pa, pb, pc, po) };
+        } else {
+            let mut k = 0;
+            while k < B {
+                // SAFETY: `self` proves the features; lanes `k..k + PER_REGISTER` (64
+                // bytes) are within the `B` of each array, as `B` is a multiple of
+                // `PER_REGISTER`.
+                unsafe { T::op(op, pa.add(k), pb.add(k), pc.add(k), po.add(k)) };
+                k += T::PER_REGISTER;
             }
         }
-        Some(out)
+        out
     }
 
     /// `a + b`, lane by lane.
@@ -193,7 +196,11 @@ impl Avx512 {
     where
         Lanes<T, B>: core::ops::Add<Output = Lanes<T, B>>,
     {
-        self.apply(Op::Add, &a, &b, &b).unwrap_or_else(|| a + b)
+        if Self::whole::<T, B>() {
+            self.apply(Op::Add, &a, &b, &b)
+        } else {
+            a + b
+        }
     }
 
     /// `a − b`, lane by lane.
@@ -203,7 +210,11 @@ impl Avx512 {
     where
         Lanes<T, B>: core::ops::Sub<Output = Lanes<T, B>>,
     {
-        self.apply(Op::Sub, &a, &b, &b).unwrap_or_else(|| a - b)
+        if Self::whole::<T, B>() {
+            self.apply(Op::Sub, &a, &b, &b)
+        } else {
+            a - b
+        }
     }
 
     /// `a · b`, lane by lane.
@@ -213,7 +224,11 @@ impl Avx512 {
     where
         Lanes<T, B>: core::ops::Mul<Output = Lanes<T, B>>,
     {
-        self.apply(Op::Mul, &a, &b, &b).unwrap_or_else(|| a * b)
+        if Self::whole::<T, B>() {
+            self.apply(Op::Mul, &a, &b, &b)
+        } else {
+            a * b
+        }
     }
 
     /// `a / b`, lane by lane.
@@ -223,7 +238,11 @@ impl Avx512 {
     where
         Lanes<T, B>: core::ops::Div<Output = Lanes<T, B>>,
     {
-        self.apply(Op::Div, &a, &b, &b).unwrap_or_else(|| a / b)
+        if Self::whole::<T, B>() {
+            self.apply(Op::Div, &a, &b, &b)
+        } else {
+            a / b
+        }
     }
 
     /// `−a`, lane by lane (the sign bit flipped, as `-x`).
@@ -233,7 +252,11 @@ impl Avx512 {
     where
         Lanes<T, B>: core::ops::Neg<Output = Lanes<T, B>>,
     {
-        self.apply(Op::Neg, &a, &a, &a).unwrap_or_else(|| -a)
+        if Self::whole::<T, B>() {
+            self.apply(Op::Neg, &a, &a, &a)
+        } else {
+            -a
+        }
     }
 
     /// `a·b + c`, lane by lane, rounded once (the fused multiply-add that the AVX-512 copies'
@@ -246,14 +269,15 @@ impl Avx512 {
         b: Lanes<T, B>,
         c: Lanes<T, B>,
     ) -> Lanes<T, B> {
-        self.apply(Op::MulAdd, &a, &b, &c).unwrap_or_else(|| {
-            let mut out = c.0;
-            for ((o, a), b) in out.iter_mut().zip(a.0).zip(b.0) {
-                // SAFETY: `self` proves FMA.
-                *o = unsafe { T::fma(a, b, *o) };
-            }
-            Lanes(out)
-        })
+        if Self::whole::<T, B>() {
+            return self.apply(Op::MulAdd, &a, &b, &c);
+        }
+        let mut out = c.0;
+        for ((o, a), b) in out.iter_mut().zip(a.0).zip(b.0) {
+            // SAFETY: `self` proves FMA.
+            *o = unsafe { T::fma(a, b, *o) };
+        }
+        Lanes(out)
     }
 }
 

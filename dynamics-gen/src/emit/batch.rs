@@ -144,9 +144,15 @@ pub fn batch_functions(
         };
         let ops = graph.op_counts(f.outputs).total();
         let too_many_outputs = rows * f.cols > MAX_LANES_OUTPUTS;
-        let large = too_many_outputs
-            || ops > MAX_LANES_OPS
+        let dispatched = !options.no_std && options.cpu_dispatch;
+        // Too large for the optimiser's vectoriser, not for the AVX-512 instructions
+        // (`zmm`): lanes in the AVX-512 copy alone, state by state elsewhere. The dispatch
+        // makes it so only where the single-state function has its copies (its body is not
+        // split), and goes state by state otherwise.
+        let too_large = ops > MAX_LANES_OPS
             || graph.live(f.outputs).iter().filter(|&&l| l).count() > MAX_UNSPLIT_LETS;
+        let zmm_only = too_large && dispatched;
+        let large = too_many_outputs || (too_large && !zmm_only);
         let (body, how, inline) = match runtime {
             Some(runtime) if !large => {
                 let body = body(Some(runtime));
@@ -158,23 +164,32 @@ pub fn batch_functions(
                     crate::options::Scalar::F32 => (8, 16),
                 };
                 let single = f.single;
-                let wide = if options.no_std || !options.cpu_dispatch {
+                let wide = if !dispatched {
                     "where the target's vectors are wide (`-C target-cpu=native`)".to_string()
                 } else {
                     format!("where the CPU's vectors are wide (on x86-64 with AVX-512 or AVX2 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
                 };
                 // The dispatch gives a body of this size an AVX-512 copy of its own (`zmm`).
-                let large = if !options.no_std && options.cpu_dispatch && ops >= super::zmm::MIN_OPS
-                {
+                let large = if zmm_only {
+                    any_avx512 = true;
+                    format!(" It runs so only where the CPU has AVX-512 and `B` is a multiple of {avx512}: {} (the runtime's `Avx512`); {} `{single}` once per state, as its body ({ops} operations) is too large for the optimiser to vectorise `B` wide (more than {MAX_LANES_OPS}).", super::zmm::DOC_MARK, super::zmm::ONLY_MARK)
+                } else if dispatched && ops >= super::zmm::MIN_OPS {
+                    any_avx512 = true;
                     format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512`) where `B` is a multiple of {avx512}.", super::zmm::DOC_MARK)
                 } else {
                     String::new()
                 };
-                any_avx512 |= !large.is_empty();
-                let how = format!(
-                    " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}).{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
-                    options.scalar.as_str()
-                );
+                let how = if zmm_only {
+                    format!(
+                        " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers.{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
+                        options.scalar.as_str()
+                    )
+                } else {
+                    format!(
+                        " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}).{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
+                        options.scalar.as_str()
+                    )
+                };
                 // Never inlined: where it is not dispatched (`-C target-cpu=native`, other
                 // architectures, `no_std`) this function holds the whole `B`-wide body, and
                 // inlined into a caller's loop it ran 1.1–1.4× slower (UR5 and Panda, B = 8,
@@ -183,16 +198,7 @@ pub fn batch_functions(
                 (wrap(f.single, body), how, quote!(#[inline(never)]))
             }
             _ => {
-                // Per state, by iterators (no indexing, so no bounds checks): a call of the
-                // single-state function (generated with its batch form, see `generate_impl`).
                 let single = Ident::new(f.single, Span::call_site());
-                let call = quote!(|#(#names),*| self.#single(#(#names),*));
-                let first = &names[0];
-                let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
-                for n in &names[1..] {
-                    pattern = quote!((#pattern, #n));
-                    states = quote!(#states.zip(#n.iter()));
-                }
                 let why = if runtime.is_none() {
                     "it is generated without the runtime crate, whose `Lanes` type vectorised batches need".to_string()
                 } else if too_many_outputs {
@@ -201,14 +207,7 @@ pub fn batch_functions(
                     format!("its body ({ops} operations) is too large to unroll `B` wide (more than {MAX_LANES_OPS}: the optimiser leaves such bodies largely unvectorised, and their `B`-wide values spill)")
                 };
                 (
-                    quote! {
-                        let single = #call;
-                        let mut out = [#result_path::zeros(); B];
-                        for (o, #pattern) in out.iter_mut().zip(#states) {
-                            *o = single(#(#names),*);
-                        }
-                        out
-                    },
+                    per_state(&single, &names, &result_path),
                     format!(" The code of `{}` called once per state: {why}.", f.single),
                     quote!(#[inline]),
                 )
@@ -236,6 +235,29 @@ pub fn batch_functions(
         ));
     }
     out
+}
+
+/// A batch body that calls `single` once per state, by iterators (no indexing, so no bounds
+/// checks), on the arguments `names`, into an array of `result` (a type path that has
+/// `zeros()`). The single-state function is generated with its batch form (`generate_impl`).
+pub(super) fn per_state(single: &Ident, names: &[Ident], result: &TokenStream) -> TokenStream {
+    let call = quote!(|#(#names),*| self.#single(#(#names),*));
+    let Some((first, rest)) = names.split_first() else {
+        return quote!([self.#single(); B]);
+    };
+    let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
+    for n in rest {
+        pattern = quote!((#pattern, #n));
+        states = quote!(#states.zip(#n.iter()));
+    }
+    quote! {
+        let single = #call;
+        let mut out = [#result::zeros(); B];
+        for (o, #pattern) in out.iter_mut().zip(#states) {
+            *o = single(#(#names),*);
+        }
+        out
+    }
 }
 
 /// The impl block with each public `X_batch<const B: usize>` marked `#[inline(never)]` (a

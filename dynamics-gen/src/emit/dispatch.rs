@@ -272,8 +272,16 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
         };
         match sig.filter(follows) {
             Some(sig) => {
-                out.extend(dispatched(&item, sig, used));
+                out.extend(dispatched(&item, sig, used, scalar));
                 used.any = true;
+            }
+            // Not dispatched (so its function is not: it cannot happen for a body this
+            // large), a batch body only the AVX-512 copy may run goes state by state.
+            None if has_mark(&item, super::zmm::ONLY_MARK) => {
+                match signature_of(&item, scalar, true) {
+                    Some(sig) => out.extend(zmm_only(&item, sig, None, scalar)),
+                    None => out.extend(item),
+                }
             }
             None => out.extend(item),
         }
@@ -397,8 +405,19 @@ fn signature_of(item: &[TokenTree], scalar: Scalar, forced: bool) -> Option<Sign
     })
 }
 
+/// Whether the attributes of `item` (its doc comment) hold `mark`.
+fn has_mark(item: &[TokenTree], mark: &str) -> bool {
+    let f = fn_name(item).map_or(item.len(), |(f, _)| f);
+    item[..f].iter().any(|t| t.to_string().contains(mark))
+}
+
 /// The three functions for the eligible `item`.
-fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStream {
+fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
+    if has_mark(item, super::zmm::ONLY_MARK) {
+        let fused = wide_body(sig.body.clone(), used);
+        let z_body = super::zmm::avx512_body(&fused);
+        return zmm_only(item, sig, z_body, scalar);
+    }
     let Signature {
         p,
         public,
@@ -416,9 +435,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
     // A large batch body's AVX-512 copy: its lane arithmetic as AVX-512 instructions.
-    let avx512_body = item[..p]
-        .iter()
-        .any(|t| t.to_string().contains(super::zmm::DOC_MARK))
+    let avx512_body = has_mark(item, super::zmm::DOC_MARK)
         .then(|| super::zmm::avx512_body(&fused))
         .flatten();
     let cfg = dispatch_cfg();
@@ -562,6 +579,123 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used) -> TokenStrea
         #[inline(always)]
         fn #body_fn<const WIDE: bool #generics>(#args) #ret {
             #fused
+        }
+    }
+}
+
+/// A batch function whose body is too large for the optimiser's vectoriser
+/// ([`super::zmm::ONLY_MARK`]): its AVX-512 body of instructions `z_body` where the CPU has
+/// AVX-512 and `B` fills whole registers, and otherwise the single-state function once per
+/// state (which is dispatched itself, so a state's result is its bits on every CPU):
+///
+/// ```text
+/// #[inline] pub fn f_batch<const B: usize>(&self, args) -> [R; B] {
+///     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
+///     { if B % 8 == 0 && Self::has_avx512() { return unsafe { self.f_batch_avx512::<B>(args) }; } }
+///     (f once per state)
+/// }
+/// unsafe extern "C" fn f_batch_avx512<const B: usize>(&self, args) -> [R; B]  // AVX-512
+/// unsafe fn f_batch_body_avx512<const B: usize>(&self, args) -> [R; B]        // z_body
+/// ```
+///
+/// Without `z_body` (the body did not parse), only the per-state loop.
+fn zmm_only(
+    item: &[TokenTree],
+    sig: Signature,
+    z_body: Option<TokenStream>,
+    scalar: Scalar,
+) -> TokenStream {
+    let Signature {
+        p,
+        public,
+        name,
+        generics,
+        generic_names,
+        args,
+        arg_names,
+        ret,
+        ..
+    } = sig;
+    let (attrs, _) = without_inline_never(&item[..p]);
+    let vis = public.then(|| quote!(pub));
+    // `-> [R; B]`: the single-state function's result `R`, and the name of `B`.
+    let elem = match syn::parse2::<syn::ReturnType>(ret.clone()) {
+        Ok(syn::ReturnType::Type(_, ty)) => match *ty {
+            syn::Type::Array(a) => Some(a.elem),
+            _ => None,
+        },
+        _ => None,
+    };
+    let single = name
+        .to_string()
+        .strip_suffix("_batch")
+        .map(|s| Ident::new(s, name.span()));
+    let (Some(elem), Some(single), [b]) = (elem, single, generic_names.as_slice()) else {
+        return item.iter().cloned().collect();
+    };
+    let per_state = super::batch::per_state(&single, &arg_names, &quote!(<#elem>));
+    let Some(z_body) = z_body else {
+        return quote! {
+            #attrs
+            #vis fn #name<#generics>(#args) #ret {
+                #per_state
+            }
+        };
+    };
+    let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
+        Scalar::F64 => 8,
+        Scalar::F32 => 16,
+    });
+    let fast = format_ident!("{}_avx512", name);
+    let body_z = format_ident!("{}_body_avx512", name);
+    let cfg = dispatch_cfg();
+    let fast_doc = format!(
+        " [`Self::{name}`] compiled for AVX-512, for `B` a multiple of {lanes}: call it only \
+         on a CPU that has the features [`Self::has_avx512`] checks."
+    );
+    let body_doc = format!(
+        " The body of [`Self::{fast}`]: the unrolled code of [`Self::{single}`] on lanes, its \
+         arithmetic as AVX-512 instructions (the runtime's `Avx512`)."
+    );
+    let wide = contains_ident(&z_body, "WIDE").then(|| {
+        quote!(
+            const WIDE: bool = true;
+        )
+    });
+    quote! {
+        #attrs
+        #[allow(unsafe_code)]
+        #vis fn #name<#generics>(#args) #ret {
+            #cfg
+            {
+                if #b % #lanes == 0 && Self::has_avx512() {
+                    return unsafe { self.#fast::<#b>(#(#arg_names),*) };
+                }
+            }
+            #per_state
+        }
+
+        #[doc = #fast_doc]
+        #cfg
+        #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
+        #[allow(unsafe_code, improper_ctypes_definitions)]
+        unsafe extern "C" fn #fast<#generics>(#args) #ret {
+            unsafe { self.#body_z::<#b>(#(#arg_names),*) }
+        }
+
+        #[doc = #body_doc]
+        #[doc = ""]
+        #[doc = " # Safety"]
+        #[doc = ""]
+        #[doc = " The CPU has the features [`Self::has_avx512`] checks."]
+        #cfg
+        #[inline(always)]
+        #[allow(unsafe_code)]
+        unsafe fn #body_z<#generics>(#args) #ret {
+            #wide
+            // SAFETY: the function's contract: the AVX-512 copy's features.
+            let z = unsafe { Self::lanes_avx512() };
+            #z_body
         }
     }
 }
@@ -880,6 +1014,37 @@ mod tests {
             solo.contains("unsafe { self.inverse_dynamics_batch_body_avx512::<B>(q, qd, qdd) }")
         );
         assert!(solo.contains("unsafe fn lanes_avx512()"));
+        // Its forward dynamics (2,966 operations) is too large for the vectoriser: lanes in
+        // the AVX-512 copy alone, for `B` a multiple of 8, and otherwise its single-state
+        // function once per state, with no AVX2 or portable copy of the lanes.
+        let k = solo
+            .find("pub fn forward_dynamics_batch<const B: usize>(")
+            .expect("the batch function");
+        let wrapper = &solo[k..k + solo[k..].find("\n    }\n").expect("its end")];
+        assert!(wrapper.contains("if B % 8 == 0 && Self::has_avx512() {"));
+        assert!(wrapper
+            .contains("return unsafe { self.forward_dynamics_batch_avx512::<B>(q, qd, tau) };"));
+        assert!(wrapper.contains("*o = single(q, qd, tau);"));
+        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx512<const B: usize>("));
+        for absent in ["_batch_avx2", "_batch_body<", "_batch_portable"]
+            .map(|s| format!("forward_dynamics{s}"))
+        {
+            assert!(!solo.contains(&absent), "{absent}");
+        }
+        assert!(solo.contains("on other CPUs and targets and for other `B` it calls `forward_dynamics` once per state"));
+        // Without the dispatch, state by state on every CPU.
+        let plain = crate::Builder::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/solo12.urdf"
+        ))
+        .floating_base(true)
+        .cpu_dispatch(false)
+        .generate()
+        .expect("generates");
+        assert!(!plain.contains("_avx512"));
+        assert!(plain.contains(
+            "The code of `forward_dynamics` called once per state: its body (2966 operations)"
+        ));
         // Its mass matrix and gravity batches are below the bound, as is everything of the
         // UR5's: the vectoriser's code, and no token.
         assert!(!solo.contains("gravity_batch_body_avx512"));

@@ -38,6 +38,12 @@ pub const MIN_OPS: usize = 1000;
 /// ([`super::batch`] writes them for bodies of at least [`MIN_OPS`] operations).
 pub const DOC_MARK: &str = "its AVX-512 copy computes each operation as one AVX-512 instruction";
 
+/// The words that follow [`DOC_MARK`] in the doc comment of a batch body too large for the
+/// optimiser's vectoriser ([`super::batch::MAX_LANES_OPS`]): the dispatch gives it the AVX-512
+/// body, for `B` a multiple of the register's lanes, and otherwise calls the single-state
+/// function once per state (no AVX2 or portable copy of the lanes).
+pub const ONLY_MARK: &str = "on other CPUs and targets and for other `B` it calls";
+
 /// The statements of `body` (a batch body in its dispatched `WIDE` form) with its lane
 /// arithmetic on the token `z`, or `None` when it does not parse as a block.
 ///
