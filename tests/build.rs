@@ -113,7 +113,7 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
 /// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
 /// a chain in f64 and f32 (std and no_std), a floating tree, mimic joints, armature and
 /// friction, run-time parameters, the Lagrangian route, a humanoid whose largest bodies
-/// fall back to per-state calls, and the pendulum in f64, whose functions are too small for
+/// run on lanes in the AVX-512 copy alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too small for
 /// the CPU dispatch (its vectorised batch bodies are out-of-line `extern "C"` parts, which
 /// the `no_panic` test's machine-code check reads). Every generated robot has the batch functions; instantiating
 /// them `B` wide for all of them made two test binaries take over ten CPU-minutes each.

@@ -16,6 +16,14 @@
 //! `f64::mul_add` does; `neg` flips the sign bit, as `-x` does). Lanes that do not fill whole
 //! 512-bit registers (`B` not a multiple of 8 for `f64`, of 16 for `f32`) use the operators
 //! (and a scalar fused multiply-add).
+//!
+//! The methods are written for the optimiser's sake as much as for the instructions': a plain
+//! `if` on `B` (a constant) and, for one register, one straight-line instruction through
+//! pointers into the arrays, so that its first passes turn every `Lanes` of the body into a
+//! vector register value. Written first with an `Option` result (`None` for the operator
+//! case) and a `step_by` loop over the registers, the AVX-512 body of Talos' forward dynamics
+//! (5,501 operations, `B` = 8) took 155 s to compile in release, against 8 s now, and G1's
+//! four batch functions 541 against 40 s; the instructions were the same.
 
 // The crate's one unsafe module: intrinsics behind a token whose constructor is `unsafe`.
 #![allow(unsafe_code)]

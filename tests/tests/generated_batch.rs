@@ -2,7 +2,8 @@
 //! `mass_matrix_batch`, `gravity_batch`) against the single-state functions, state by state,
 //! on the robots of `with_batch_cases!`: chains and trees, fixed and floating base, mimic
 //! joints, friction, run-time parameters, both derivation routes, f64 and f32, std and no_std,
-//! and a humanoid whose largest bodies are computed state by state.
+//! and a humanoid whose largest bodies run on lanes in the AVX-512 copy alone (a whole register
+//! of states, on a CPU with AVX-512) and state by state otherwise (three states).
 //!
 //! A batch lane is the single-state code's arithmetic on that state, its multiply-adds fused
 //! where the single-state code's are, and the run-time CPU dispatch picks the same copy

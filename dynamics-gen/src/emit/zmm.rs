@@ -22,6 +22,18 @@
 //! body 184.6–186.1 → 126.1–127.4 ns (1.36–1.39× → 2.00–2.03×). Small bodies, which the
 //! vectoriser handles whole, lost a little in a first scratch version (the UR5's inverse
 //! dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
+//!
+//! A body of more than [`super::batch::MAX_LANES_OPS`] operations, which the vectoriser
+//! leaves mostly scalar (Solo-12's forward dynamics with `B` = 8 ran at 0.64–0.71× of single
+//! calls), runs on lanes in the AVX-512 copy alone ([`ONLY_MARK`]): the batch function checks
+//! for AVX-512 and `B` a multiple of the register's lanes, and otherwise calls the
+//! single-state function once per state; there is no AVX2 or portable copy of its lanes.
+//! Measured as above (medians of 11 rounds, two runs; "before" the per-state calls): Solo-12's
+//! forward dynamics (2,966 operations) 0.93–0.95× → 2.61–2.69× single calls, Talos' upper
+//! body's (5,501) 1.00× → 2.66–2.77×, G1's inverse dynamics (4,059) 0.92–0.99× → 1.99–2.10×
+//! and forward dynamics (9,731) 1.00× → 2.64–2.71×. Compile time, G1's four batch functions at
+//! `B` = 8 in a crate of their own: release 11.7 → 40 s, debug 5.0 → 27.6 s (the runtime's
+//! token methods had first made it 541 s in release: see `dynamics_runtime::Avx512`).
 
 use proc_macro2::TokenStream;
 use quote::quote;
