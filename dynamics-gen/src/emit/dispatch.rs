@@ -508,17 +508,9 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
                 " The body of [`Self::{fast}`]: [`Self::{body_fn}`] with its lane arithmetic \
                  as AVX-512 instructions (the runtime's `Avx512`)."
             );
-            let wide = contains_ident(&z_body, "WIDE").then(|| {
-                quote!(
-                    const WIDE: bool = true;
-                )
-            });
             // For other `B` (not whole registers), the vectoriser's body: the same bits, and
             // the AVX-512 body is not generated for them (see `zmm_only`).
-            let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
-                Scalar::F64 => 8,
-                Scalar::F32 => 16,
-            });
+            let lanes = register_lanes(scalar);
             let call_z = quote!(unsafe { self.#body_z #fast_turbofish (#(#arg_names),*) });
             (
                 match generic_names.first() {
@@ -531,22 +523,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
                     },
                     None => call_z,
                 },
-                quote! {
-                    #[doc = #doc]
-                    #[doc = ""]
-                    #[doc = " # Safety"]
-                    #[doc = ""]
-                    #[doc = " The CPU has the features [`Self::has_avx512`] checks."]
-                    #cfg
-                    #[inline(always)]
-                    #[allow(unsafe_code)]
-                    unsafe fn #body_z #fast_generics (#args) #ret {
-                        #wide
-                        // SAFETY: the function's contract: the AVX-512 copy's features.
-                        let z = unsafe { Self::lanes_avx512() };
-                        #z_body
-                    }
-                },
+                avx512_body_item(&body_z, &fast_generics, &args, &ret, &z_body, &doc),
             )
         }
         None => (
@@ -628,19 +605,15 @@ fn zmm_only(
     z_body: Option<TokenStream>,
     scalar: Scalar,
 ) -> TokenStream {
-    let Signature {
-        p,
-        public,
-        name,
-        generics,
-        generic_names,
-        args,
-        arg_names,
-        ret,
-        ..
-    } = sig;
-    let (attrs, _) = without_inline_never(&item[..p]);
-    let vis = public.then(|| quote!(pub));
+    let (name, generics, args, arg_names, ret) = (
+        &sig.name,
+        &sig.generics,
+        &sig.args,
+        &sig.arg_names,
+        &sig.ret,
+    );
+    let (attrs, _) = without_inline_never(&item[..sig.p]);
+    let vis = sig.public.then(|| quote!(pub));
     // `-> [R; B]`: the single-state function's result `R`, and the name of `B`.
     let elem = match syn::parse2::<syn::ReturnType>(ret.clone()) {
         Ok(syn::ReturnType::Type(_, ty)) => match *ty {
@@ -653,10 +626,10 @@ fn zmm_only(
         .to_string()
         .strip_suffix("_batch")
         .map(|s| Ident::new(s, name.span()));
-    let (Some(elem), Some(single), [b]) = (elem, single, generic_names.as_slice()) else {
+    let (Some(elem), Some(single), [b]) = (elem, single, sig.generic_names.as_slice()) else {
         return item.iter().cloned().collect();
     };
-    let per_state = super::batch::per_state(&single, &arg_names, &quote!(<#elem>));
+    let per_state = super::batch::per_state(&single, arg_names, &quote!(<#elem>));
     let Some(z_body) = z_body else {
         return quote! {
             #attrs
@@ -665,10 +638,7 @@ fn zmm_only(
             }
         };
     };
-    let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
-        Scalar::F64 => 8,
-        Scalar::F32 => 16,
-    });
+    let lanes = register_lanes(scalar);
     let fast = format_ident!("{}_avx512", name);
     let body_z = format_ident!("{}_body_avx512", name);
     let cfg = dispatch_cfg();
@@ -680,11 +650,7 @@ fn zmm_only(
         " The body of [`Self::{fast}`]: the unrolled code of [`Self::{single}`] on lanes, its \
          arithmetic as AVX-512 instructions (the runtime's `Avx512`)."
     );
-    let wide = contains_ident(&z_body, "WIDE").then(|| {
-        quote!(
-            const WIDE: bool = true;
-        )
-    });
+    let body_item = avx512_body_item(&body_z, &quote!(<#generics>), args, ret, &z_body, &body_doc);
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -706,7 +672,28 @@ fn zmm_only(
             unsafe { self.#body_z::<#b>(#(#arg_names),*) }
         }
 
-        #[doc = #body_doc]
+        #body_item
+    }
+}
+
+/// The `unsafe fn name` that runs `z_body`, a body of the runtime's `Avx512` token methods
+/// ([`super::zmm::avx512_body`]), with the token made at its top.
+fn avx512_body_item(
+    name: &Ident,
+    generics: &TokenStream,
+    args: &TokenStream,
+    ret: &TokenStream,
+    z_body: &TokenStream,
+    doc: &str,
+) -> TokenStream {
+    let cfg = dispatch_cfg();
+    let wide = contains_ident(z_body, "WIDE").then(|| {
+        quote!(
+            const WIDE: bool = true;
+        )
+    });
+    quote! {
+        #[doc = #doc]
         #[doc = ""]
         #[doc = " # Safety"]
         #[doc = ""]
@@ -714,13 +701,21 @@ fn zmm_only(
         #cfg
         #[inline(always)]
         #[allow(unsafe_code)]
-        unsafe fn #body_z<#generics>(#args) #ret {
+        unsafe fn #name #generics (#args) #ret {
             #wide
             // SAFETY: the function's contract: the AVX-512 copy's features.
             let z = unsafe { Self::lanes_avx512() };
             #z_body
         }
     }
+}
+
+/// The lanes of the scalar in one AVX-512 register.
+fn register_lanes(scalar: Scalar) -> proc_macro2::Literal {
+    proc_macro2::Literal::usize_unsuffixed(match scalar {
+        Scalar::F64 => 8,
+        Scalar::F32 => 16,
+    })
 }
 
 /// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
