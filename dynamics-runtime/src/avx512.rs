@@ -163,6 +163,26 @@ element!(
     _mm_cvtss_f32
 );
 
+/// A method of [`Avx512`] for the binary operator `$op` of trait `$tr`: one instruction per
+/// whole register ([`Avx512::apply`]), the operator otherwise.
+macro_rules! binary {
+    ($(#[$doc:meta])* $name:ident, $tr:ident, $op:tt) => {
+        $(#[$doc])*
+        #[inline(always)]
+        #[must_use]
+        pub fn $name<T: Element, const B: usize>(self, a: Lanes<T, B>, b: Lanes<T, B>) -> Lanes<T, B>
+        where
+            Lanes<T, B>: core::ops::$tr<Output = Lanes<T, B>>,
+        {
+            if Self::whole::<T, B>() {
+                self.apply(Op::$tr, &a, &b, &b)
+            } else {
+                a $op b
+            }
+        }
+    };
+}
+
 impl Avx512 {
     /// Whether `B` lanes fill a whole number of registers (the instructions' case).
     #[inline(always)]
@@ -197,61 +217,22 @@ impl Avx512 {
         out
     }
 
-    /// `a + b`, lane by lane.
-    #[inline(always)]
-    #[must_use]
-    pub fn add<T: Element, const B: usize>(self, a: Lanes<T, B>, b: Lanes<T, B>) -> Lanes<T, B>
-    where
-        Lanes<T, B>: core::ops::Add<Output = Lanes<T, B>>,
-    {
-        if Self::whole::<T, B>() {
-            self.apply(Op::Add, &a, &b, &b)
-        } else {
-            a + b
-        }
-    }
-
-    /// `a − b`, lane by lane.
-    #[inline(always)]
-    #[must_use]
-    pub fn sub<T: Element, const B: usize>(self, a: Lanes<T, B>, b: Lanes<T, B>) -> Lanes<T, B>
-    where
-        Lanes<T, B>: core::ops::Sub<Output = Lanes<T, B>>,
-    {
-        if Self::whole::<T, B>() {
-            self.apply(Op::Sub, &a, &b, &b)
-        } else {
-            a - b
-        }
-    }
-
-    /// `a · b`, lane by lane.
-    #[inline(always)]
-    #[must_use]
-    pub fn mul<T: Element, const B: usize>(self, a: Lanes<T, B>, b: Lanes<T, B>) -> Lanes<T, B>
-    where
-        Lanes<T, B>: core::ops::Mul<Output = Lanes<T, B>>,
-    {
-        if Self::whole::<T, B>() {
-            self.apply(Op::Mul, &a, &b, &b)
-        } else {
-            a * b
-        }
-    }
-
-    /// `a / b`, lane by lane.
-    #[inline(always)]
-    #[must_use]
-    pub fn div<T: Element, const B: usize>(self, a: Lanes<T, B>, b: Lanes<T, B>) -> Lanes<T, B>
-    where
-        Lanes<T, B>: core::ops::Div<Output = Lanes<T, B>>,
-    {
-        if Self::whole::<T, B>() {
-            self.apply(Op::Div, &a, &b, &b)
-        } else {
-            a / b
-        }
-    }
+    binary!(
+        /// `a + b`, lane by lane.
+        add, Add, +
+    );
+    binary!(
+        /// `a − b`, lane by lane.
+        sub, Sub, -
+    );
+    binary!(
+        /// `a · b`, lane by lane.
+        mul, Mul, *
+    );
+    binary!(
+        /// `a / b`, lane by lane.
+        div, Div, /
+    );
 
     /// `−a`, lane by lane (the sign bit flipped, as `-x`).
     #[inline(always)]

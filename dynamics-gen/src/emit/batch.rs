@@ -184,17 +184,16 @@ pub fn batch_functions(
                 } else {
                     String::new()
                 };
-                let how = if zmm_only {
-                    format!(
-                        " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers.{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
-                        options.scalar.as_str()
-                    )
+                let t = options.scalar.as_str();
+                // Where the vectoriser's copies run too, when they pay.
+                let pays = if zmm_only {
+                    String::new()
                 } else {
-                    format!(
-                        " The unrolled code of `{single}` with every value a `Lanes<{0}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers: per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{0}`s, AVX-512 {avx512}).{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit.",
-                        options.scalar.as_str()
-                    )
+                    format!(": per state it is cheaper than `B` calls {wide}, with `B` a multiple of the vector width (AVX2 holds {avx2} `{t}`s, AVX-512 {avx512})")
                 };
+                let how = format!(
+                    " The unrolled code of `{single}` with every value a `Lanes<{t}, B>` of the runtime crate (structure of arrays), so that each operation runs on all `B` states at once in vector registers{pays}.{large} Multiply-adds are fused where `{single}`'s are: a state's result is `{single}`'s bit for bit."
+                );
                 // Never inlined: where it is not dispatched (`-C target-cpu=native`, other
                 // architectures, `no_std`) this function holds the whole `B`-wide body, and
                 // inlined into a caller's loop it ran 1.1–1.4× slower (UR5 and Panda, B = 8,
