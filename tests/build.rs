@@ -61,6 +61,21 @@ const F32: &[&str] = &["urdf_ur5", "urdf_panda", "urdf_rand7"];
 /// the copies directly, as only code in the module can.
 const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_104_f32"];
 
+/// The batch cases whose AVX2 bodies of instructions (`dynamics-gen/src/emit/zmm.rs`) are
+/// called directly (`tests/dispatched_copies.rs`), as a CPU with AVX-512 runs them through the
+/// public functions only for some `B`: each module gets `batch_copies_differ`. The Panda's
+/// forward dynamics (a body of 1,000–2,500 operations: AVX-512 and AVX2 bodies of
+/// instructions beside the vectoriser's) with `B` = 4 and 8, and G1's inverse and forward
+/// dynamics (larger: lanes in those two copies alone) with `B` = 4.
+const BATCH_COPIES: &[(&str, &[&str], &[usize])] = &[
+    ("urdf_panda", &["forward_dynamics"], &[4, 8]),
+    (
+        "tree_g1_29dof",
+        &["inverse_dynamics", "forward_dynamics"],
+        &[4],
+    ),
+];
+
 /// The cases generated with the `*_from_sin_cos` variants (`sin_cos_variants: true`), each
 /// with `sin_cos_variants_differ` (`tests/sin_cos_variants.rs`): a chain with its derivative
 /// functions, a floating tree, f32 `no_std`, and mimic joints (whose angles with a
@@ -113,7 +128,7 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
 /// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
 /// a chain in f64 and f32 (std and no_std), a floating tree, mimic joints, armature and
 /// friction, run-time parameters, the Lagrangian route, a humanoid whose largest bodies
-/// run on lanes in the AVX-512 copy alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too small for
+/// run on lanes in the AVX-512 and AVX2 copies alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too small for
 /// the CPU dispatch (its vectorised batch bodies are out-of-line `extern "C"` parts, which
 /// the `no_panic` test's machine-code check reads). Every generated robot has the batch functions; instantiating
 /// them `B` wide for all of them made two test binaries take over ten CPU-minutes each.
@@ -473,6 +488,11 @@ fn main() {
         if SIN_COS.contains(&case.module.as_str()) {
             copies += &sin_cos_helper(nq, nv, s);
         }
+        if let Some((_, functions, widths)) =
+            BATCH_COPIES.iter().find(|(m, _, _)| *m == case.module)
+        {
+            copies += &batch_copies_helper(nq, nv, s, functions, widths);
+        }
         writeln!(
             modules,
             "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); {copies}}}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
@@ -627,6 +647,65 @@ pub fn sin_cos_variants_differ(q: &[f64], v: &[f64], a: &[f64]) -> (usize, usize
 }}
 /// `(nq, nv)` of this robot, for `sin_cos_variants_differ`'s arguments.
 pub const SIN_COS_DIMS: (usize, usize) = ({nq}, {nv});
+"#
+    )
+}
+
+/// The source of `batch_copies_differ` for a [`BATCH_COPIES`] module: each of `functions`'
+/// batch AVX2 copy with `B` of `widths` at states around one, against its single-state AVX2
+/// copy per state, as (entries compared, entries whose bits differ); `None` unless the CPU
+/// has AVX2 and FMA, or where the binary has no AVX2 copy.
+fn batch_copies_helper(
+    nq: usize,
+    nv: usize,
+    s: &str,
+    functions: &[&str],
+    widths: &[usize],
+) -> String {
+    let mut calls = String::new();
+    for f in functions {
+        for b in widths {
+            calls += &format!(
+                r#"
+    {{
+        let lanes = |x: &[f64], n| -> Vec<f64> {{ x.iter().map(|x| x + 0.1 * n as f64).collect() }};
+        let q: [nalgebra::SVector<{s}, {nq}>; {b}] = core::array::from_fn(|l| crate::to_s(&lanes(q, l)));
+        let v: [nalgebra::SVector<{s}, {nv}>; {b}] = core::array::from_fn(|l| crate::to_s(&lanes(v, l)));
+        let a: [nalgebra::SVector<{s}, {nv}>; {b}] = core::array::from_fn(|l| crate::to_s(&lanes(a, l)));
+        // SAFETY: the CPU has AVX2 and FMA (checked above).
+        let batch = unsafe {{ r.{f}_batch_avx2::<{b}>(&q, &v, &a) }};
+        for l in 0..{b} {{
+            // SAFETY: as above.
+            cmp(batch[l].as_slice(), unsafe {{ r.{f}_avx2(&q[l], &v[l], &a[l]) }}.as_slice());
+        }}
+    }}"#
+            );
+        }
+    }
+    format!(
+        r#"
+/// Where this binary has the AVX2 copies: their batch bodies of instructions against their
+/// single-state code, state by state.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f"), not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(unsafe_code)]
+pub fn batch_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usize, usize)> {{
+    if !Robot::has_avx2() {{
+        return None;
+    }}
+    let r = Robot::DEFAULT;
+    let mut n = (0, 0);
+    let mut cmp = |x: &[{s}], y: &[{s}]| {{
+        for (x, y) in x.iter().zip(y) {{
+            n.0 += 1;
+            if x.to_bits() != y.to_bits() {{
+                n.1 += 1;
+            }}
+        }}
+    }};{calls}
+    Some(n)
+}}
+/// `(nq, nv)` of this robot, for `batch_copies_differ`'s arguments.
+pub const BATCH_COPIES_DIMS: (usize, usize) = ({nq}, {nv});
 "#
     )
 }

@@ -5,6 +5,11 @@
 //! tree) and an f32 chain, at 256 random states each. Where the CPU lacks either instruction set, or
 //! the binary is compiled with AVX-512 or with AVX2 and FMA (no such pair of copies), the test
 //! says so and checks nothing.
+//!
+//! The batch functions' AVX2 bodies of instructions (the runtime's `Avx2` token) run through
+//! the public functions on a machine with AVX-512 only where `B` fills AVX2 registers but not
+//! AVX-512 ones, and for the largest bodies only; here they are called directly too, against
+//! the single-state AVX2 copy state by state.
 
 #![allow(missing_docs)]
 
@@ -65,5 +70,54 @@ fn avx2_copies_give_the_avx512_copies_bits() {
             "{name}: {differing} of {compared} entries differ between the AVX-512 and the AVX2 copy"
         );
         eprintln!("{name}: {compared} entries, the same bits in both copies");
+    }
+}
+
+#[cfg(all(
+    target_arch = "x86_64",
+    not(target_feature = "avx512f"),
+    not(all(target_feature = "avx2", target_feature = "fma"))
+))]
+#[test]
+fn avx2_batch_bodies_give_the_single_calls_bits() {
+    type Differ = fn(&[f64], &[f64], &[f64]) -> Option<(usize, usize)>;
+    let cases: [(&str, Differ, (usize, usize)); 2] = [
+        (
+            "urdf_panda",
+            dynamics_tests::generated::urdf_panda::batch_copies_differ,
+            dynamics_tests::generated::urdf_panda::BATCH_COPIES_DIMS,
+        ),
+        (
+            "tree_g1_29dof",
+            dynamics_tests::generated::tree_g1_29dof::batch_copies_differ,
+            dynamics_tests::generated::tree_g1_29dof::BATCH_COPIES_DIMS,
+        ),
+    ];
+    let mut s = 0xba7c_u64;
+    let mut uniform = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for (name, differ, (nq, nv)) in cases {
+        let (mut compared, mut differing) = (0, 0);
+        for _ in 0..16 {
+            let q: Vec<f64> = (0..nq).map(|_| 3.0 * uniform()).collect();
+            let v: Vec<f64> = (0..nv).map(|_| 2.0 * uniform()).collect();
+            let a: Vec<f64> = (0..nv).map(|_| 5.0 * uniform()).collect();
+            let Some((c, d)) = differ(&q, &v, &a) else {
+                eprintln!("this CPU lacks AVX2 and FMA: the batch bodies are not compared");
+                return;
+            };
+            compared += c;
+            differing += d;
+        }
+        assert!(compared > 0, "{name}: nothing compared");
+        assert_eq!(
+            differing, 0,
+            "{name}: {differing} of {compared} entries differ between the AVX2 batch body and single calls"
+        );
+        eprintln!("{name}: {compared} entries, the single calls' bits in the AVX2 batch bodies");
     }
 }

@@ -2,12 +2,13 @@
 //! `mass_matrix_batch`, `gravity_batch`) against the single-state functions, state by state,
 //! on the robots of `with_batch_cases!`: chains and trees, fixed and floating base, mimic
 //! joints, friction, run-time parameters, both derivation routes, f64 and f32, std and no_std,
-//! and a humanoid whose largest bodies run on lanes in the AVX-512 copy alone (a whole register
-//! of states, on a CPU with AVX-512) and state by state otherwise (three states).
+//! and a humanoid whose largest bodies run on lanes in the AVX-512 and AVX2 copies alone (a
+//! whole register of states, on a CPU with either) and state by state otherwise (three states;
+//! `tests/dispatched_copies.rs` calls the AVX2 bodies directly).
 //!
 //! A batch lane is the single-state code's arithmetic on that state, its multiply-adds fused
-//! where the single-state code's are, and the run-time CPU dispatch picks the same copy
-//! (portable or AVX-512) for both: the results are the same bits, on every target and CPU.
+//! where the single-state code's are, and the run-time CPU dispatch picks copies that fuse
+//! alike (portable, or AVX-512 and AVX2) for both: the results are the same bits, on every target and CPU.
 
 use nalgebra::SVector;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -20,7 +20,7 @@
 //! matrix), whose transpose out of the lanes costs more than the lanes gain, and for a body of
 //! more than [`MAX_LANES_OPS`] operations (a tree's forward dynamics, a humanoid's inverse
 //! dynamics), which the optimiser's vectoriser leaves largely scalar. Under the CPU dispatch
-//! such a body still runs on lanes in the AVX-512 copy, whose arithmetic is AVX-512
+//! such a body still runs on lanes in the AVX-512 and AVX2 copies, whose arithmetic is vector
 //! instructions written out ([`super::zmm`]), for `B` a multiple of a register's lanes; only
 //! elsewhere does it go state by state.
 //!
@@ -51,7 +51,7 @@ pub const MAX_LANES_OUTPUTS: usize = 64;
 /// vectoriser, which has to rebuild each operation's `B` lanes from the unrolled lane loops,
 /// left most of the 8-wide body unvectorised. The bound is an operation count, a crude proxy
 /// for that: it sits between the two measured bodies. It binds the vectoriser's copies only:
-/// the AVX-512 copy of a larger body runs its lanes as AVX-512 instructions ([`super::zmm`]),
+/// the AVX-512 and AVX2 copies of a larger body run its lanes as vector instructions ([`super::zmm`]),
 /// at 2.0–2.8× of single calls for these bodies.
 pub const MAX_LANES_OPS: usize = 2500;
 
@@ -151,7 +151,7 @@ pub fn batch_functions(
         let too_many_outputs = rows * f.cols > MAX_LANES_OUTPUTS;
         let dispatched = !options.no_std && options.cpu_dispatch;
         // Too large for the optimiser's vectoriser, not for the AVX-512 instructions
-        // (`zmm`): lanes in the AVX-512 copy alone, state by state elsewhere. The dispatch
+        // (`zmm`): lanes in the AVX-512 and AVX2 copies alone, state by state elsewhere. The dispatch
         // makes it so only where the single-state function has its copies (its body is not
         // split), and goes state by state otherwise.
         let too_large = ops > MAX_LANES_OPS
@@ -174,13 +174,13 @@ pub fn batch_functions(
                 } else {
                     format!("where the CPU's vectors are wide (on x86-64 with AVX-512 or AVX2 this function runs a copy compiled for it wherever `{single}` does; elsewhere compile with `-C target-cpu=native`)")
                 };
-                // The dispatch gives a body of this size an AVX-512 copy of its own (`zmm`).
+                // The dispatch gives a body of this size copies of instructions (`zmm`).
                 let large = if zmm_only {
                     any_avx512 = true;
-                    format!(" It runs so only where the CPU has AVX-512 and `B` is a multiple of {avx512}: {} (the runtime's `Avx512`); {} `{single}` once per state, as its body ({ops} operations) is too large for the optimiser to vectorise `B` wide (more than {MAX_LANES_OPS}).", super::zmm::DOC_MARK, super::zmm::ONLY_MARK)
+                    format!(" It runs so only where the CPU has AVX-512 and `B` is a multiple of {avx512}, or AVX2 with FMA and `B` a multiple of {avx2}: {} (the runtime's `Avx512` and `Avx2`); {} `{single}` once per state, as its body ({ops} operations) is too large for the optimiser to vectorise `B` wide (more than {MAX_LANES_OPS}).", super::zmm::DOC_MARK, super::zmm::ONLY_MARK)
                 } else if dispatched && ops >= super::zmm::MIN_OPS {
                     any_avx512 = true;
-                    format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512`) where `B` is a multiple of {avx512}.", super::zmm::DOC_MARK)
+                    format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512` and `Avx2`) where `B` is a multiple of a register's lanes ({avx512} and {avx2}).", super::zmm::DOC_MARK)
                 } else {
                     String::new()
                 };
@@ -259,6 +259,45 @@ pub(super) fn per_state(single: &Ident, names: &[Ident], result: &TokenStream) -
         let mut out = [#result::zeros(); B];
         for (o, #pattern) in out.iter_mut().zip(#states) {
             *o = single(#(#names),*);
+        }
+        out
+    }
+}
+
+/// The statements of a copy's batch function that runs `body`, a body of instructions for
+/// one register of lanes (`body::<L>`, `L` = `lanes`), on the `B` states `L` at a time
+/// (`B` a multiple of `L`; [`super::zmm`]): one call when `B` = `L`, otherwise a loop over
+/// the registers' states. `result`: `R` of `-> [R; B]`.
+///
+/// Written for one register, the body is compiled once whatever `B` is; with `B` = 2`L`, its
+/// values in two registers each, G1's AVX2 bodies took 189 s to compile in release against
+/// 58 s, and ran slower (Solo-12's inverse dynamics in the AVX2 copy: 1.37× of single calls
+/// with `B` = 8 as one body, 1.89× with 4).
+pub(super) fn per_register(
+    body: &Ident,
+    names: &[Ident],
+    result: &TokenStream,
+    lanes: &proc_macro2::Literal,
+) -> TokenStream {
+    let Some((first, rest)) = names.split_first() else {
+        return quote!(unsafe { self.#body::<B>() });
+    };
+    let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
+    for n in rest {
+        pattern = quote!((#pattern, #n));
+        states = quote!(#states.zip(#n.iter()));
+    }
+    quote! {
+        if const { B == #lanes } {
+            // SAFETY: the function's contract: the copy's features.
+            return unsafe { self.#body::<B>(#(#names),*) };
+        }
+        let mut out = [#result::zeros(); B];
+        let (chunks, _) = out.as_chunks_mut::<#lanes>();
+        #(let (#names, _) = #names.as_chunks::<#lanes>();)*
+        for (o, #pattern) in chunks.iter_mut().zip(#states) {
+            // SAFETY: as above.
+            *o = unsafe { self.#body::<#lanes>(#(#names),*) };
         }
         out
     }
@@ -407,8 +446,8 @@ fn lanes_helpers(
             }
         }
     });
-    // The operands and the token of the AVX-512 copies of large batch bodies (`super::zmm`),
-    // which exist only where the dispatch made them.
+    // The operands and the tokens of the AVX-512 and AVX2 copies of large batch bodies
+    // (`super::zmm`), which exist only where the dispatch made them.
     let avx512 = avx512.then(|| {
         quote! {
             /// The lanes of `x`: `x` itself, or a scalar on every lane (the operands of the
@@ -431,6 +470,20 @@ fn lanes_helpers(
             unsafe fn lanes_avx512() -> #runtime::Avx512 {
                 // SAFETY: the function's contract.
                 unsafe { #runtime::Avx512::new_unchecked() }
+            }
+
+            /// The runtime's `Avx2` token, for the AVX2 batch bodies.
+            ///
+            /// # Safety
+            ///
+            /// The CPU has AVX2 and FMA (which `has_avx2` checks, where the functions are
+            /// dispatched).
+            #[cfg(target_arch = "x86_64")]
+            #[inline(always)]
+            #[allow(dead_code, unsafe_code)]
+            unsafe fn lanes_avx2() -> #runtime::Avx2 {
+                // SAFETY: the function's contract.
+                unsafe { #runtime::Avx2::new_unchecked() }
             }
         }
     });

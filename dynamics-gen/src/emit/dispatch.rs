@@ -73,9 +73,11 @@
 //! runs it calls `f_portable::<B>`, the body inlined under the `cfg` above and an
 //! out-of-line `extern "C"` function outside it (`-C target-cpu` with AVX-512), so that a
 //! caller knows it cannot unwind (as [`super::batch::out_of_line`] does for the batch
-//! functions the dispatch leaves alone). A batch body too large for the optimiser's vectoriser
-//! ([`super::zmm::ONLY_MARK`]) gets the AVX-512 copy alone, for `B` a multiple of a register's
-//! lanes, and is otherwise the single-state function once per state ([`zmm_only`]).
+//! functions the dispatch leaves alone). A large batch body ([`super::zmm::DOC_MARK`]) gets
+//! bodies of its own in the AVX-512 and AVX2 copies, its lane arithmetic written as those
+//! instructions, for `B` a multiple of a register's lanes. One too large for the optimiser's
+//! vectoriser ([`super::zmm::ONLY_MARK`]) gets those two copies alone, and is otherwise the
+//! single-state function once per state ([`zmm_only`]).
 //!
 //! Left alone: functions with type or lifetime parameters, bodies split into `extern "C"`
 //! parts (the largest trees), whose nested functions cannot see `WIDE`, and bodies of fewer
@@ -106,6 +108,67 @@ fn avx2_cond() -> TokenStream {
 fn avx2_cfg() -> TokenStream {
     let avx2 = avx2_cond();
     quote!(#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f"), #avx2))])
+}
+
+/// The two copies whose batch bodies can run on the runtime's tokens ([`super::zmm`]).
+#[derive(Clone, Copy)]
+enum Isa {
+    Avx512,
+    Avx2,
+}
+
+impl Isa {
+    /// The suffix of the copy's name (`f_avx512`).
+    fn suffix(self) -> &'static str {
+        match self {
+            Isa::Avx512 => "avx512",
+            Isa::Avx2 => "avx2",
+        }
+    }
+
+    /// Its name in prose.
+    fn prose(self) -> &'static str {
+        match self {
+            Isa::Avx512 => "AVX-512",
+            Isa::Avx2 => "AVX2",
+        }
+    }
+
+    /// The `cfg` of the copy.
+    fn cfg(self) -> TokenStream {
+        match self {
+            Isa::Avx512 => dispatch_cfg(),
+            Isa::Avx2 => avx2_cfg(),
+        }
+    }
+
+    /// Its `target_feature`s.
+    fn features(self) -> &'static str {
+        match self {
+            Isa::Avx512 => "avx512f,avx512vl,avx512dq,avx512bw,fma",
+            Isa::Avx2 => "avx2,fma",
+        }
+    }
+
+    /// The runtime's token of its instructions.
+    fn token(self) -> &'static str {
+        match self {
+            Isa::Avx512 => "Avx512",
+            Isa::Avx2 => "Avx2",
+        }
+    }
+
+    /// The lanes of the scalar in one of its registers.
+    fn lanes(self, scalar: Scalar) -> proc_macro2::Literal {
+        let per_zmm = match scalar {
+            Scalar::F64 => 8,
+            Scalar::F32 => 16,
+        };
+        proc_macro2::Literal::usize_unsuffixed(match self {
+            Isa::Avx512 => per_zmm,
+            Isa::Avx2 => per_zmm / 2,
+        })
+    }
 }
 
 /// What the rewritten bodies use, so that only those helpers are added.
@@ -417,7 +480,7 @@ fn has_mark(item: &[TokenTree], mark: &str) -> bool {
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
         let fused = wide_body(sig.body.clone(), used);
-        let z_body = super::zmm::avx512_body(&fused);
+        let z_body = super::zmm::token_body(&fused);
         return zmm_only(item, sig, z_body, scalar);
     }
     let Signature {
@@ -437,8 +500,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
     // A large batch body's AVX-512 copy: its lane arithmetic as AVX-512 instructions.
-    let avx512_body = has_mark(item, super::zmm::DOC_MARK)
-        .then(|| super::zmm::avx512_body(&fused))
+    let z_body = has_mark(item, super::zmm::DOC_MARK)
+        .then(|| super::zmm::token_body(&fused))
         .flatten();
     let cfg = dispatch_cfg();
     let avx2 = avx2_cond();
@@ -501,36 +564,41 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     } else {
         (portable_body, quote!())
     };
-    let body_z = format_ident!("{}_body_avx512", name);
-    let (fast_call, fast_body) = match avx512_body {
-        Some(z_body) => {
-            let doc = format!(
-                " The body of [`Self::{fast}`]: [`Self::{body_fn}`] with its lane arithmetic \
-                 as AVX-512 instructions (the runtime's `Avx512`)."
-            );
-            // For other `B` (not whole registers), the vectoriser's body: the same bits, and
-            // the AVX-512 body is not generated for them (see `zmm_only`).
-            let lanes = register_lanes(scalar);
-            let call_z = quote!(unsafe { self.#body_z #fast_turbofish (#(#arg_names),*) });
-            (
-                match generic_names.first() {
-                    Some(b) => quote! {
-                        if const { #b % #lanes == 0 } {
-                            #call_z
-                        } else {
-                            self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)
-                        }
-                    },
-                    None => call_z,
-                },
-                avx512_body_item(&body_z, &fast_generics, &args, &ret, &z_body, &doc),
-            )
-        }
-        None => (
-            quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)),
-            quote!(),
-        ),
+    // The call of the body in a copy for `isa`, and the item of its body of instructions
+    // where it has one. For `B` that do not fill its registers, the vectoriser's body: the
+    // same bits, and the body of instructions is not generated for them (see `zmm_only`).
+    let plain = quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*));
+    let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
+        let Some(z_body) = &z_body else {
+            return (plain.clone(), quote!());
+        };
+        let body_z = format_ident!("{}_body_{}", name, isa.suffix());
+        let doc = format!(
+            " The body of [`Self::{copy}`]: [`Self::{body_fn}`] with its lane arithmetic \
+             as {} instructions (the runtime's `{}`).",
+            isa.prose(),
+            isa.token()
+        );
+        let lanes = isa.lanes(scalar);
+        let call = match (generic_names.first(), array_elem(&ret)) {
+            (Some(b), Some(elem)) => {
+                let per_register =
+                    super::batch::per_register(&body_z, &arg_names, &quote!(<#elem>), &lanes);
+                quote! {
+                    if const { #b % #lanes == 0 } {
+                        #per_register
+                    } else {
+                        #plain
+                    }
+                }
+            }
+            _ => quote!(unsafe { self.#body_z #fast_turbofish (#(#arg_names),*) }),
+        };
+        let item = token_body_item(isa, &body_z, &fast_generics, &args, &ret, z_body, &doc);
+        (call, item)
     };
+    let (fast_call, fast_body) = copy(Isa::Avx512, &fast);
+    let (mid_call, mid_body) = copy(Isa::Avx2, &mid);
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -567,8 +635,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #[target_feature(enable = "avx2,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
         unsafe extern "C" fn #mid #fast_generics (#args) #ret {
-            self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*)
+            #mid_call
         }
+
+        #mid_body
 
         #[doc = #body_doc]
         #[inline(always)]
@@ -579,24 +649,32 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 }
 
 /// A batch function whose body is too large for the optimiser's vectoriser
-/// ([`super::zmm::ONLY_MARK`]): its AVX-512 body of instructions `z_body` where the CPU has
-/// AVX-512 and `B` fills whole registers, and otherwise the single-state function once per
-/// state (which is dispatched itself, so a state's result is its bits on every CPU):
+/// ([`super::zmm::ONLY_MARK`]): its body of instructions `z_body` where the CPU has AVX-512
+/// or AVX2 and `B` fills whole registers of it, and otherwise the single-state function once
+/// per state (which is dispatched itself, so a state's result is its bits on every CPU):
 ///
 /// ```text
 /// #[inline] pub fn f_batch<const B: usize>(&self, args) -> [R; B] {
 ///     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
-///     { if const { B % 8 == 0 } && Self::has_avx512() { return unsafe { self.f_batch_avx512::<B>(args) }; } }
+///     {
+///         if const { B % 8 == 0 } && Self::has_avx512() { return unsafe { self.f_batch_avx512::<B>(args) }; }
+///         #[cfg(not(all(target_feature = "avx2", target_feature = "fma")))]
+///         { if const { B % 4 == 0 } && Self::has_avx2() { return unsafe { self.f_batch_avx2::<B>(args) }; } }
+///     }
 ///     (f once per state)
 /// }
 /// unsafe extern "C" fn f_batch_avx512<const B: usize>(&self, args) -> [R; B]  // AVX-512
-/// unsafe fn f_batch_body_avx512<const B: usize>(&self, args) -> [R; B]        // z_body
+/// unsafe fn f_batch_body_avx512<const B: usize>(&self, args) -> [R; B]        // z_body, `Avx512`
+/// unsafe extern "C" fn f_batch_avx2<const B: usize>(&self, args) -> [R; B]    // AVX2 and FMA
+/// unsafe fn f_batch_body_avx2<const B: usize>(&self, args) -> [R; B]          // z_body, `Avx2`
 /// ```
 ///
-/// The test of `B` is an inline `const`, so that for other `B` the compiler does not even
-/// generate the AVX-512 copy: there its token methods would be the operators' lane loops,
-/// and Talos' forward dynamics batch with `B` = 3 took 379 s to compile in release with a
-/// plain `if`, 2.8 s with the `const` one.
+/// (The lanes of `f64`; `f32` has twice as many.) The tests of `B` are inline `const`s, so
+/// that for other `B` the compiler does not even generate the copy: there its token methods
+/// would be the operators' lane loops, and Talos' forward dynamics batch with `B` = 3 took
+/// 379 s to compile in release with a plain `if`, 2.8 s with the `const` one. On a CPU with
+/// AVX-512, a `B` that fills AVX2 registers but not AVX-512 ones (4 `f64`) runs the AVX2
+/// copy: the same bits, as the two copies fuse alike.
 ///
 /// Without `z_body` (the body did not parse), only the per-state loop.
 fn zmm_only(
@@ -615,13 +693,7 @@ fn zmm_only(
     let (attrs, _) = without_inline_never(&item[..sig.p]);
     let vis = sig.public.then(|| quote!(pub));
     // `-> [R; B]`: the single-state function's result `R`, and the name of `B`.
-    let elem = match syn::parse2::<syn::ReturnType>(ret.clone()) {
-        Ok(syn::ReturnType::Type(_, ty)) => match *ty {
-            syn::Type::Array(a) => Some(a.elem),
-            _ => None,
-        },
-        _ => None,
-    };
+    let elem = array_elem(ret);
     let single = name
         .to_string()
         .strip_suffix("_batch")
@@ -638,47 +710,96 @@ fn zmm_only(
             }
         };
     };
-    let lanes = register_lanes(scalar);
-    let fast = format_ident!("{}_avx512", name);
-    let body_z = format_ident!("{}_body_avx512", name);
+    // A copy for `isa`: its call in the wrapper (after its `const` test of `B` and its CPU
+    // check), the copy and its body of instructions.
+    let copy = |isa: Isa| -> (TokenStream, TokenStream) {
+        let lanes = isa.lanes(scalar);
+        let (fast, body_z) = (
+            format_ident!("{}_{}", name, isa.suffix()),
+            format_ident!("{}_body_{}", name, isa.suffix()),
+        );
+        let has = format_ident!("has_{}", isa.suffix());
+        let (cfg, features, prose) = (isa.cfg(), isa.features(), isa.prose());
+        let fast_doc = format!(
+            " [`Self::{name}`] compiled for {prose}, for `B` a multiple of {lanes}: call it \
+             only on a CPU that has the features [`Self::{has}`] checks."
+        );
+        let body_doc = format!(
+            " The body of [`Self::{fast}`]: the unrolled code of [`Self::{single}`] on lanes, \
+             its arithmetic as {prose} instructions (the runtime's `{}`).",
+            isa.token()
+        );
+        let body_item = token_body_item(
+            isa,
+            &body_z,
+            &quote!(<#generics>),
+            args,
+            ret,
+            &z_body,
+            &body_doc,
+        );
+        let per_register = super::batch::per_register(&body_z, arg_names, &quote!(<#elem>), &lanes);
+        let call = quote! {
+            if const { #b % #lanes == 0 } && Self::#has() {
+                return unsafe { self.#fast::<#b>(#(#arg_names),*) };
+            }
+        };
+        let items = quote! {
+            #[doc = #fast_doc]
+            #cfg
+            #[target_feature(enable = #features)]
+            #[allow(unsafe_code, improper_ctypes_definitions)]
+            unsafe extern "C" fn #fast<#generics>(#args) #ret {
+                #per_register
+            }
+
+            #body_item
+        };
+        (call, items)
+    };
+    let (fast_call, fast_items) = copy(Isa::Avx512);
+    let (mid_call, mid_items) = copy(Isa::Avx2);
     let cfg = dispatch_cfg();
-    let fast_doc = format!(
-        " [`Self::{name}`] compiled for AVX-512, for `B` a multiple of {lanes}: call it only \
-         on a CPU that has the features [`Self::has_avx512`] checks."
-    );
-    let body_doc = format!(
-        " The body of [`Self::{fast}`]: the unrolled code of [`Self::{single}`] on lanes, its \
-         arithmetic as AVX-512 instructions (the runtime's `Avx512`)."
-    );
-    let body_item = avx512_body_item(&body_z, &quote!(<#generics>), args, ret, &z_body, &body_doc);
+    let avx2 = avx2_cond();
     quote! {
         #attrs
         #[allow(unsafe_code)]
         #vis fn #name<#generics>(#args) #ret {
             #cfg
             {
-                if const { #b % #lanes == 0 } && Self::has_avx512() {
-                    return unsafe { self.#fast::<#b>(#(#arg_names),*) };
+                #fast_call
+                #[cfg(#avx2)]
+                {
+                    #mid_call
                 }
             }
             #per_state
         }
 
-        #[doc = #fast_doc]
-        #cfg
-        #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
-        #[allow(unsafe_code, improper_ctypes_definitions)]
-        unsafe extern "C" fn #fast<#generics>(#args) #ret {
-            unsafe { self.#body_z::<#b>(#(#arg_names),*) }
-        }
+        #fast_items
 
-        #body_item
+        #mid_items
     }
 }
 
-/// The `unsafe fn name` that runs `z_body`, a body of the runtime's `Avx512` token methods
-/// ([`super::zmm::avx512_body`]), with the token made at its top.
-fn avx512_body_item(
+/// `R` of the return type `-> [R; B]`.
+fn array_elem(ret: &TokenStream) -> Option<TokenStream> {
+    match syn::parse2::<syn::ReturnType>(ret.clone()) {
+        Ok(syn::ReturnType::Type(_, ty)) => match *ty {
+            syn::Type::Array(a) => {
+                let elem = a.elem;
+                Some(quote!(#elem))
+            }
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The `unsafe fn name` that runs `z_body`, a body of the runtime's token methods
+/// ([`super::zmm::token_body`]), with `isa`'s token made at its top.
+fn token_body_item(
+    isa: Isa,
     name: &Ident,
     generics: &TokenStream,
     args: &TokenStream,
@@ -686,7 +807,12 @@ fn avx512_body_item(
     z_body: &TokenStream,
     doc: &str,
 ) -> TokenStream {
-    let cfg = dispatch_cfg();
+    let cfg = isa.cfg();
+    let safety = format!(
+        " The CPU has the features [`Self::has_{}`] checks.",
+        isa.suffix()
+    );
+    let token = format_ident!("lanes_{}", isa.suffix());
     let wide = contains_ident(z_body, "WIDE").then(|| {
         quote!(
             const WIDE: bool = true;
@@ -697,25 +823,17 @@ fn avx512_body_item(
         #[doc = ""]
         #[doc = " # Safety"]
         #[doc = ""]
-        #[doc = " The CPU has the features [`Self::has_avx512`] checks."]
+        #[doc = #safety]
         #cfg
         #[inline(always)]
         #[allow(unsafe_code)]
         unsafe fn #name #generics (#args) #ret {
             #wide
-            // SAFETY: the function's contract: the AVX-512 copy's features.
-            let z = unsafe { Self::lanes_avx512() };
+            // SAFETY: the function's contract: the copy's features.
+            let z = unsafe { Self::#token() };
             #z_body
         }
     }
-}
-
-/// The lanes of the scalar in one AVX-512 register.
-fn register_lanes(scalar: Scalar) -> proc_macro2::Literal {
-    proc_macro2::Literal::usize_unsuffixed(match scalar {
-        Scalar::F64 => 8,
-        Scalar::F32 => 16,
-    })
 }
 
 /// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
@@ -1003,7 +1121,7 @@ mod tests {
     }
 
     #[test]
-    fn large_batch_bodies_get_an_avx512_body_of_instructions() {
+    fn large_batch_bodies_get_avx512_and_avx2_bodies_of_instructions() {
         let solo = crate::Builder::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/../tests/data/robots/trees/solo12.urdf"
@@ -1011,33 +1129,45 @@ mod tests {
         .floating_base(true)
         .generate()
         .expect("generates");
-        // Solo-12's inverse dynamics batch (1,310 operations): its AVX-512 copy runs a body of
-        // token methods, made `unsafe` and given the token at its top.
-        let k = solo
-            .find("unsafe fn inverse_dynamics_batch_body_avx512<const B: usize>(")
-            .expect("the AVX-512 body");
-        let body = &solo[k..k + solo[k..].find("\n    }\n").expect("its end")];
-        // prettyplease breaks method chains over lines: compare without whitespace.
-        let body: String = body.split_whitespace().collect();
-        assert!(body.contains("letz=unsafe{Self::lanes_avx512()};"));
-        for method in ["z.mul_add(", "z.add(", "z.sub(", "z.mul(", "z.neg("] {
-            assert!(body.contains(method), "{method}");
+        // Solo-12's inverse dynamics batch (1,310 operations): its AVX-512 and AVX2 copies run
+        // a body of token methods each, made `unsafe` and given the token at its top.
+        for isa in ["avx512", "avx2"] {
+            let k = solo
+                .find(&format!(
+                    "unsafe fn inverse_dynamics_batch_body_{isa}<const B: usize>("
+                ))
+                .expect("the body of instructions");
+            let body = &solo[k..k + solo[k..].find("\n    }\n").expect("its end")];
+            // prettyplease breaks method chains over lines: compare without whitespace.
+            let body: String = body.split_whitespace().collect();
+            assert!(body.contains(&format!("letz=unsafe{{Self::lanes_{isa}()}};")));
+            for method in ["z.mul_add(", "z.add(", "z.sub(", "z.mul(", "z.neg("] {
+                assert!(body.contains(method), "{method}");
+            }
+            assert!(body.matches("lett").count() > 100);
+            assert!(
+                !body.contains('+') && !body.contains('*'),
+                "an operator left"
+            );
+            // Called for one register of states at a time: at once when `B` is one, else
+            // in a loop over them.
+            let flat: String = solo.split_whitespace().collect();
+            let lanes = if isa == "avx512" { 8 } else { 4 };
+            assert!(flat.contains(&format!(
+                "ifconst{{B=={lanes}}}{{returnunsafe{{self.inverse_dynamics_batch_body_{isa}::<B>(q,qd,qdd)}};}}"
+            )));
+            assert!(flat.contains(&format!(
+                "*o=unsafe{{self.inverse_dynamics_batch_body_{isa}::<{lanes}>(q,qd,qdd)}};"
+            )));
+            assert!(solo.contains(&format!("unsafe fn lanes_{isa}()")));
         }
-        assert!(body.matches("lett").count() > 100);
-        assert!(
-            !body.contains('+') && !body.contains('*'),
-            "an operator left"
-        );
-        assert!(
-            solo.contains("unsafe { self.inverse_dynamics_batch_body_avx512::<B>(q, qd, qdd) }")
-        );
         // Only for whole registers: for other `B` the copy runs the vectoriser's body, and the
-        // AVX-512 body is not generated.
+        // body of instructions is not generated.
         assert!(solo.contains("if const { B % 8 == 0 } {"));
-        assert!(solo.contains("unsafe fn lanes_avx512()"));
+        assert!(solo.contains("if const { B % 4 == 0 } {"));
         // Its forward dynamics (2,966 operations) is too large for the vectoriser: lanes in
-        // the AVX-512 copy alone, for `B` a multiple of 8, and otherwise its single-state
-        // function once per state, with no AVX2 or portable copy of the lanes.
+        // the AVX-512 and AVX2 copies alone, for `B` a multiple of 8 and 4, and otherwise its
+        // single-state function once per state, with no portable copy of the lanes.
         let k = solo
             .find("pub fn forward_dynamics_batch<const B: usize>(")
             .expect("the batch function");
@@ -1045,11 +1175,13 @@ mod tests {
         assert!(wrapper.contains("if const { B % 8 == 0 } && Self::has_avx512() {"));
         assert!(wrapper
             .contains("return unsafe { self.forward_dynamics_batch_avx512::<B>(q, qd, tau) };"));
+        assert!(wrapper.contains("if const { B % 4 == 0 } && Self::has_avx2() {"));
+        assert!(wrapper
+            .contains("return unsafe { self.forward_dynamics_batch_avx2::<B>(q, qd, tau) };"));
         assert!(wrapper.contains("*o = single(q, qd, tau);"));
         assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx512<const B: usize>("));
-        for absent in ["_batch_avx2", "_batch_body<", "_batch_portable"]
-            .map(|s| format!("forward_dynamics{s}"))
-        {
+        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx2<const B: usize>("));
+        for absent in ["_batch_body<", "_batch_portable"].map(|s| format!("forward_dynamics{s}")) {
             assert!(!solo.contains(&absent), "{absent}");
         }
         assert!(solo.contains("on other CPUs and targets and for other `B` it calls `forward_dynamics` once per state"));
@@ -1062,15 +1194,15 @@ mod tests {
         .cpu_dispatch(false)
         .generate()
         .expect("generates");
-        assert!(!plain.contains("_avx512"));
+        assert!(!plain.contains("_avx512") && !plain.contains("_avx2"));
         assert!(plain.contains(
             "The code of `forward_dynamics` called once per state: its body (2966 operations)"
         ));
         // Its mass matrix and gravity batches are below the bound, as is everything of the
         // UR5's: the vectoriser's code, and no token.
-        assert!(!solo.contains("gravity_batch_body_avx512"));
+        assert!(!solo.contains("gravity_batch_body_avx"));
         let ur5 = crate::Builder::new("ur5").generate().expect("generates");
-        assert!(!ur5.contains("_batch_body_avx512") && !ur5.contains("lanes_avx512"));
+        assert!(!ur5.contains("_batch_body_avx") && !ur5.contains("lanes_avx"));
     }
 
     #[test]

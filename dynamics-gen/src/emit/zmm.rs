@@ -1,4 +1,5 @@
-//! The AVX-512 copy of a large batch body, each `Lanes` operation one AVX-512 instruction.
+//! The AVX-512 and AVX2 copies of a large batch body, each `Lanes` operation one vector
+//! instruction.
 //!
 //! A batch body ([`super::batch`]) is the single-state code with every value a `Lanes<T,
 //! B>`, whose operators are loops over the `B` lanes. The optimiser fully unrolls those
@@ -7,33 +8,35 @@
 //! the AVX-512 copy of Solo-12's inverse dynamics batch (`B` = 8, 1,310 operations) held
 //! 4,864 instructions, 482 of them scalar and 1,018 on 256-bit registers.
 //!
-//! So the AVX-512 copy of such a body gets a body of its own, `X_body_avx512`: the same
-//! statements, with every `a + b`, `a − b`, `a · b`, `a / b`, `−a` and fused multiply-add
-//! of lanes a method of the runtime's `Avx512` token (`z.add(a, b)`, …), which writes one
-//! AVX-512 instruction when `B` lanes fill a register (8 `f64`, 16 `f32`) and the operator
-//! otherwise. The token is made from the `unsafe` `Avx512::new_unchecked` once, at the top of
-//! the body, which is itself an `unsafe fn` called only by the AVX-512 copy (after the
-//! run-time check that chose it). Each method gives its operator's bits, so a state's result
-//! is still the single-state function's bit for bit.
+//! So the AVX-512 and AVX2 copies of such a body get a body of their own each,
+//! `X_body_avx512` and `X_body_avx2`: the same statements, with every `a + b`, `a − b`,
+//! `a · b`, `a / b`, `−a` and fused multiply-add of lanes a method of a token of the runtime
+//! (`z.add(a, b)`, …), `Avx512` or `Avx2`, which writes one instruction per register when `B`
+//! lanes fill whole registers (AVX-512: 8 `f64`, 16 `f32`; AVX2: 4 and 8) and the operator
+//! otherwise. The token is made from its `unsafe` `new_unchecked` once, at the top of the
+//! body, which is itself an `unsafe fn` called only by its copy (after the run-time check
+//! that chose it). Each method gives its operator's bits, so a state's result is still the
+//! single-state function's bit for bit.
 //!
 //! Measured (old and new generated code in one binary, default profile, `B` = 8 against 8
-//! single calls, per state, two runs; README "Batches of states"): Solo-12's inverse
-//! dynamics 121.7–123.4 → 86.8–88.7 ns (1.27–1.29× → 1.77–1.80× single calls), Talos' upper
-//! body 184.6–186.1 → 126.1–127.4 ns (1.36–1.39× → 2.00–2.03×). Small bodies, which the
-//! vectoriser handles whole, lost a little in a first scratch version (the UR5's inverse
-//! dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
+//! single calls, per state, two runs; README "Batches of states"): in the AVX-512 copy,
+//! Solo-12's inverse dynamics 121.7–123.4 → 86.8–88.7 ns (1.27–1.29× → 1.77–1.80× single
+//! calls), Talos' upper body 184.6–186.1 → 126.1–127.4 ns (1.36–1.39× → 2.00–2.03×). Small
+//! bodies, which the vectoriser handles whole, lost a little in a first scratch version (the
+//! UR5's inverse dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
 //!
 //! A body of more than [`super::batch::MAX_LANES_OPS`] operations, which the vectoriser
 //! leaves mostly scalar (Solo-12's forward dynamics with `B` = 8 ran at 0.64–0.71× of single
-//! calls), runs on lanes in the AVX-512 copy alone ([`ONLY_MARK`]): the batch function checks
-//! for AVX-512 and `B` a multiple of the register's lanes, and otherwise calls the
-//! single-state function once per state; there is no AVX2 or portable copy of its lanes.
-//! Measured as above (medians of 11 rounds, two runs; "before" the per-state calls): Solo-12's
-//! forward dynamics (2,966 operations) 0.93–0.95× → 2.61–2.69× single calls, Talos' upper
-//! body's (5,501) 1.00× → 2.66–2.77×, G1's inverse dynamics (4,059) 0.92–0.99× → 1.99–2.10×
-//! and forward dynamics (9,731) 1.00× → 2.64–2.71×. Compile time, G1's four batch functions at
-//! `B` = 8 in a crate of their own: release 11.7 → 40 s, debug 5.0 → 27.6 s (the runtime's
-//! token methods had first made it 541 s in release: see `dynamics_runtime::Avx512`).
+//! calls), runs on lanes in these two copies alone ([`ONLY_MARK`]): the batch function checks
+//! for the CPU's features and `B` a multiple of the register's lanes, and otherwise calls the
+//! single-state function once per state; there is no portable copy of its lanes. Measured as
+//! above in the AVX-512 copy (medians of 11 rounds, two runs; "before" the per-state calls):
+//! Solo-12's forward dynamics (2,966 operations) 0.93–0.95× → 2.61–2.69× single calls, Talos'
+//! upper body's (5,501) 1.00× → 2.66–2.77×, G1's inverse dynamics (4,059) 0.92–0.99× →
+//! 1.99–2.10× and forward dynamics (9,731) 1.00× → 2.64–2.71×. Compile time, G1's four batch
+//! functions at `B` = 8 in a crate of their own: release 11.7 → 40 s, debug 5.0 → 27.6 s with
+//! the AVX-512 copy's body alone (the runtime's token methods had first made it 541 s in
+//! release: see `dynamics_runtime::x86`).
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -41,19 +44,20 @@ use std::collections::HashSet;
 use syn::visit_mut::{self, VisitMut};
 use syn::{parse_quote, BinOp, Expr, GenericArgument, Pat, UnOp};
 
-/// The fewest lane operations (after inlining) for a batch body to get its AVX-512 copy of
+/// The fewest lane operations (after inlining) for a batch body to get its copies of
 /// instructions: the UR5's and the Panda's inverse dynamics (297 and 687) keep the
 /// vectoriser's, Solo-12's (1,310) gets it.
 pub const MIN_OPS: usize = 1000;
 
-/// The words of a batch function's doc comment that ask the dispatch for the AVX-512 body
-/// ([`super::batch`] writes them for bodies of at least [`MIN_OPS`] operations).
-pub const DOC_MARK: &str = "its AVX-512 copy computes each operation as one AVX-512 instruction";
+/// The words of a batch function's doc comment that ask the dispatch for the bodies of
+/// instructions ([`super::batch`] writes them for bodies of at least [`MIN_OPS`] operations).
+pub const DOC_MARK: &str =
+    "its AVX-512 and AVX2 copies compute each operation as one vector instruction";
 
 /// The words that follow [`DOC_MARK`] in the doc comment of a batch body too large for the
-/// optimiser's vectoriser ([`super::batch::MAX_LANES_OPS`]): the dispatch gives it the AVX-512
-/// body, for `B` a multiple of the register's lanes, and otherwise calls the single-state
-/// function once per state (no AVX2 or portable copy of the lanes).
+/// optimiser's vectoriser ([`super::batch::MAX_LANES_OPS`]): the dispatch gives it the bodies
+/// of instructions, for `B` a multiple of a register's lanes, and otherwise calls the
+/// single-state function once per state (no portable copy of the lanes).
 pub const ONLY_MARK: &str = "on other CPUs and targets and for other `B` it calls";
 
 /// The statements of `body` (a batch body in its dispatched `WIDE` form) with its lane
@@ -62,7 +66,7 @@ pub const ONLY_MARK: &str = "on other CPUs and targets and for other `B` it call
 /// Arithmetic on scalars alone (the robot's constants, run-time parameters such as
 /// `gravity0`, bound from `self`) stays as it is; a scalar operand of lane arithmetic is
 /// spread over the lanes (`Self::lanes(x)`, as the operators do).
-pub fn avx512_body(body: &TokenStream) -> Option<TokenStream> {
+pub fn token_body(body: &TokenStream) -> Option<TokenStream> {
     let mut block: syn::Block = syn::parse2(quote!({ #body })).ok()?;
     let mut rewrite = Rewrite {
         scalars: HashSet::new(),
@@ -182,7 +186,7 @@ mod tests {
 
     fn rewrite(lines: impl Fn(usize) -> String) -> Option<String> {
         let body: String = (0..3).map(lines).collect();
-        avx512_body(&body.parse().unwrap()).map(|t| t.to_string())
+        token_body(&body.parse().unwrap()).map(|t| t.to_string())
     }
 
     #[test]
