@@ -277,6 +277,11 @@ mod release {
         dynamics_tests::with_derivative_cases!(derivative_wrappers);
     }
 
+    /// The batch width: a whole AVX-512 register of `f64` states, so that the copies' bodies of
+    /// instructions are compiled and their machine code read (`dispatched_copies_have_no_panic_path`):
+    /// the AVX-512 ones 8 wide, the AVX2 ones 4 wide, called twice.
+    const B: usize = 8;
+
     macro_rules! batch_wrappers {
         ($m:ident, $nq:literal, $nv:literal, $s:ty) => {
             pub mod $m {
@@ -285,30 +290,30 @@ mod release {
                 type Q = SVector<$s, $nq>;
                 type V = SVector<$s, $nv>;
                 #[no_panic]
-                pub fn inverse_dynamics_batch(q: &[Q; 4], qd: &[V; 4], qdd: &[V; 4]) -> [V; 4] {
+                pub fn inverse_dynamics_batch(q: &[Q; B], qd: &[V; B], qdd: &[V; B]) -> [V; B] {
                     Robot::DEFAULT.inverse_dynamics_batch(q, qd, qdd)
                 }
                 #[no_panic]
-                pub fn forward_dynamics_batch(q: &[Q; 4], qd: &[V; 4], tau: &[V; 4]) -> [V; 4] {
+                pub fn forward_dynamics_batch(q: &[Q; B], qd: &[V; B], tau: &[V; B]) -> [V; B] {
                     Robot::DEFAULT.forward_dynamics_batch(q, qd, tau)
                 }
                 #[no_panic]
-                pub fn mass_matrix_batch(q: &[Q; 4]) -> [SMatrix<$s, $nv, $nv>; 4] {
+                pub fn mass_matrix_batch(q: &[Q; B]) -> [SMatrix<$s, $nv, $nv>; B] {
                     Robot::DEFAULT.mass_matrix_batch(q)
                 }
                 #[no_panic]
-                pub fn gravity_batch(q: &[Q; 4]) -> [V; 4] {
+                pub fn gravity_batch(q: &[Q; B]) -> [V; B] {
                     Robot::DEFAULT.gravity_batch(q)
                 }
                 pub fn call() -> $s {
-                    let qs: [Q; 4] =
+                    let qs: [Q; B] =
                         std::array::from_fn(|l| Q::from_fn(|i, _| 0.1 * (i + l) as $s + 0.05));
-                    let vs: [V; 4] =
+                    let vs: [V; B] =
                         std::array::from_fn(|l| V::from_fn(|i, _| 0.1 * (i * l) as $s));
-                    inverse_dynamics_batch(&qs, &vs, &vs)[3][0]
-                        + forward_dynamics_batch(&qs, &vs, &vs)[3][0]
-                        + mass_matrix_batch(&qs)[3][(0, 0)]
-                        + gravity_batch(&qs)[3][0]
+                    inverse_dynamics_batch(&qs, &vs, &vs)[B - 1][0]
+                        + forward_dynamics_batch(&qs, &vs, &vs)[B - 1][0]
+                        + mass_matrix_batch(&qs)[B - 1][(0, 0)]
+                        + gravity_batch(&qs)[B - 1][0]
                 }
             }
         };

@@ -266,13 +266,15 @@ pub(super) fn per_state(single: &Ident, names: &[Ident], result: &TokenStream) -
 
 /// The statements of a copy's batch function that runs `body`, a body of instructions for
 /// one register of lanes (`body::<L>`, `L` = `lanes`), on the `B` states `L` at a time
-/// (`B` a multiple of `L`; [`super::zmm`]): one call when `B` = `L`, otherwise a loop over
-/// the registers' states. `result`: `R` of `-> [R; B]`.
+/// (`B` a multiple of `L`; [`super::zmm`]). `result`: `R` of `-> [R; B]`.
 ///
 /// Written for one register, the body is compiled once whatever `B` is; with `B` = 2`L`, its
 /// values in two registers each, G1's AVX2 bodies took 189 s to compile in release against
 /// 58 s, and ran slower (Solo-12's inverse dynamics in the AVX2 copy: 1.37× of single calls
-/// with `B` = 8 as one body, 1.89× with 4).
+/// with `B` = 8 as one body, 1.89× with 4). The body is never named with `B`, not even in a
+/// branch for `B` = `L`: a debug build, which does not prune `if const` branches before it
+/// generates code, then also compiled the bodies `B` wide (G1's four batch functions with
+/// `B` = 8: 119 s in debug).
 pub(super) fn per_register(
     body: &Ident,
     names: &[Ident],
@@ -288,15 +290,11 @@ pub(super) fn per_register(
         states = quote!(#states.zip(#n.iter()));
     }
     quote! {
-        if const { B == #lanes } {
-            // SAFETY: the function's contract: the copy's features.
-            return unsafe { self.#body::<B>(#(#names),*) };
-        }
         let mut out = [#result::zeros(); B];
         let (chunks, _) = out.as_chunks_mut::<#lanes>();
         #(let (#names, _) = #names.as_chunks::<#lanes>();)*
         for (o, #pattern) in chunks.iter_mut().zip(#states) {
-            // SAFETY: as above.
+            // SAFETY: the function's contract: the copy's features.
             *o = unsafe { self.#body::<#lanes>(#(#names),*) };
         }
         out
