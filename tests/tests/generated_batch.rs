@@ -3,8 +3,8 @@
 //! on the robots of `with_batch_cases!`: chains and trees, fixed and floating base, mimic
 //! joints, friction, run-time parameters, both derivation routes, f64 and f32, std and no_std,
 //! and a humanoid whose largest bodies run on lanes in the AVX-512 and AVX2 copies alone (a
-//! whole register of states, on a CPU with either) and state by state otherwise (three states;
-//! `tests/dispatched_copies.rs` calls the AVX2 bodies directly).
+//! whole register of states, on a CPU with either) and state by state otherwise
+//! (`tests/dispatched_copies.rs` also calls the AVX2 bodies directly).
 //!
 //! A batch lane is the single-state code's arithmetic on that state, its multiply-adds fused
 //! where the single-state code's are, and the run-time CPU dispatch picks copies that fuse
@@ -26,9 +26,12 @@ fn rel<const R: usize, const C: usize>(
 
 macro_rules! batch {
     ($m:ident, $nq:literal, $nv:literal, $s:ty) => {{
-        // Three states, and a whole 512-bit register of them (8 `f64`, 16 `f32`): there the
+        // Four states, and a whole 512-bit register of them (8 `f64`, 16 `f32`): there the
         // AVX-512 copy of a large batch body computes with AVX-512 instructions of its own.
-        check::<3>();
+        // Four `f64` states fill an AVX2 register but not an AVX-512 one: on a CPU with
+        // AVX-512, a body too large for the vectoriser runs its AVX2 copy's instructions, the
+        // others their AVX-512 copy's vectoriser body; four `f32` states fill neither.
+        check::<4>();
         check::<{ 64 / std::mem::size_of::<$s>() }>();
         CHECKED.fetch_add(1, Ordering::SeqCst);
         fn check<const B: usize>() {
