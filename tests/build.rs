@@ -647,6 +647,21 @@ pub const SIN_COS_DIMS: (usize, usize) = ({nq}, {nv});
     )
 }
 
+/// The closure `cmp(x, y)` of the generated comparisons: it counts into `n` the entries of
+/// two `s` slices compared and those whose bits differ.
+fn tally(s: &str) -> String {
+    format!(
+        "let mut cmp = |x: &[{s}], y: &[{s}]| {{
+        for (x, y) in x.iter().zip(y) {{
+            n.0 += 1;
+            if x.to_bits() != y.to_bits() {{
+                n.1 += 1;
+            }}
+        }}
+    }};"
+    )
+}
+
 /// The source of `batch_copies_differ` for a [`BATCH_COPIES`] module: each of `functions`'
 /// batch AVX2 copy with `B` of `widths` at states around one, against its single-state AVX2
 /// copy per state, as (entries compared, entries whose bits differ); `None` unless the CPU
@@ -690,19 +705,13 @@ pub fn batch_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usize, us
     }}
     let r = Robot::DEFAULT;
     let mut n = (0, 0);
-    let mut cmp = |x: &[{s}], y: &[{s}]| {{
-        for (x, y) in x.iter().zip(y) {{
-            n.0 += 1;
-            if x.to_bits() != y.to_bits() {{
-                n.1 += 1;
-            }}
-        }}
-    }};{calls}
+    {tally}{calls}
     Some(n)
 }}
 /// `(nq, nv)` of this robot, for `batch_copies_differ`'s arguments.
 pub const BATCH_COPIES_DIMS: (usize, usize) = ({nq}, {nv});
-"#
+"#,
+        tally = tally(s)
     )
 }
 
@@ -723,14 +732,7 @@ pub fn dispatched_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usiz
     let r = Robot::DEFAULT;
     let (q, v, a) = (crate::to_s::<{s}, {nq}>(q), crate::to_s::<{s}, {nv}>(v), crate::to_s::<{s}, {nv}>(a));
     let mut n = (0, 0);
-    let mut cmp = |x: &[{s}], y: &[{s}]| {{
-        for (x, y) in x.iter().zip(y) {{
-            n.0 += 1;
-            if x.to_bits() != y.to_bits() {{
-                n.1 += 1;
-            }}
-        }}
-    }};
+    {tally}
     // SAFETY: the CPU has the features both copies are compiled for (checked above).
     unsafe {{
         cmp(r.inverse_dynamics_avx512(&q, &v, &a).as_slice(), r.inverse_dynamics_avx2(&q, &v, &a).as_slice());
@@ -742,6 +744,7 @@ pub fn dispatched_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usiz
 }}
 /// `(nq, nv)` of this robot, for `dispatched_copies_differ`'s arguments.
 pub const COPIES_DIMS: (usize, usize) = ({nq}, {nv});
-"#
+"#,
+        tally = tally(s)
     )
 }

@@ -337,30 +337,30 @@ mod tests {
         lanes::<B>(seed).map(|l| Lanes(l.0.map(|v| v as f32)))
     }
 
+    /// Every method of the token `$z` against its operator on the lanes `[a, b, c]`.
+    macro_rules! ops {
+        ($z:expr, $abc:expr) => {{
+            let (z, [a, b, c]) = ($z, $abc);
+            assert!(same(z.add(a, b), a + b));
+            assert!(same(z.sub(a, b), a - b));
+            assert!(same(z.mul(a, b), a * b));
+            assert!(same(z.div(a, b), a / b));
+            assert!(same(z.neg(a), -a));
+            let want = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
+            assert!(same(z.mul_add(a, b, c), want));
+        }};
+    }
+
     /// Every method of the token `$z` against its operator, bit for bit, on `f64` lanes
     /// `$d` wide and `f32` lanes `$s` wide.
     macro_rules! check {
         ($z:expr, $seed:expr, f64: [$($d:literal),*], f32: [$($s:literal),*]) => {{
             let z = $z;
             $(
-                let [a, b, c] = lanes::<$d>($seed);
-                assert!(same(z.add(a, b), a + b));
-                assert!(same(z.sub(a, b), a - b));
-                assert!(same(z.mul(a, b), a * b));
-                assert!(same(z.div(a, b), a / b));
-                assert!(same(z.neg(a), -a));
-                let want = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-                assert!(same(z.mul_add(a, b, c), want));
+                ops!(z, lanes::<$d>($seed));
             )*
             $(
-                let [a, b, c] = narrow::<$s>($seed);
-                assert!(same(z.add(a, b), a + b));
-                assert!(same(z.sub(a, b), a - b));
-                assert!(same(z.mul(a, b), a * b));
-                assert!(same(z.div(a, b), a / b));
-                assert!(same(z.neg(a), -a));
-                let want = Lanes(core::array::from_fn(|l| a.0[l].mul_add(b.0[l], c.0[l])));
-                assert!(same(z.mul_add(a, b, c), want));
+                ops!(z, narrow::<$s>($seed));
             )*
         }};
     }

@@ -13,6 +13,55 @@
 
 #![allow(missing_docs)]
 
+/// A module's comparison at one state `(q, q̇, q̈ or τ)`: (entries compared, entries whose
+/// bits differ), or `None` where the CPU lacks the features.
+#[allow(dead_code)]
+type Differ = fn(&[f64], &[f64], &[f64]) -> Option<(usize, usize)>;
+
+/// Each case's `differ` at `states` seeded random states (`seed`): no entry may differ
+/// between `what`; `lacks` is said, and nothing checked, where the CPU lacks the features.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(target_feature = "avx512f"),
+    not(all(target_feature = "avx2", target_feature = "fma"))
+))]
+fn compare(
+    cases: &[(&str, Differ, (usize, usize))],
+    seed: u64,
+    states: usize,
+    what: &str,
+    lacks: &str,
+) {
+    // Seeded uniform numbers in [−1, 1).
+    let mut s = seed;
+    let mut uniform = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for &(name, differ, (nq, nv)) in cases {
+        let (mut compared, mut differing) = (0, 0);
+        for _ in 0..states {
+            let q: Vec<f64> = (0..nq).map(|_| 3.0 * uniform()).collect();
+            let v: Vec<f64> = (0..nv).map(|_| 2.0 * uniform()).collect();
+            let a: Vec<f64> = (0..nv).map(|_| 5.0 * uniform()).collect();
+            let Some((c, d)) = differ(&q, &v, &a) else {
+                eprintln!("{lacks}");
+                return;
+            };
+            compared += c;
+            differing += d;
+        }
+        assert!(compared > 0, "{name}: nothing compared");
+        assert_eq!(
+            differing, 0,
+            "{name}: {differing} of {compared} entries differ between {what}"
+        );
+        eprintln!("{name}: {compared} entries, the same bits in {what}");
+    }
+}
+
 #[cfg(all(
     target_arch = "x86_64",
     not(target_feature = "avx512f"),
@@ -20,7 +69,6 @@
 ))]
 #[test]
 fn avx2_copies_give_the_avx512_copies_bits() {
-    type Differ = fn(&[f64], &[f64], &[f64]) -> Option<(usize, usize)>;
     let cases: [(&str, Differ, (usize, usize)); 4] = [
         (
             "shipped_ur5",
@@ -43,34 +91,13 @@ fn avx2_copies_give_the_avx512_copies_bits() {
             dynamics_tests::generated::random_104_f32::COPIES_DIMS,
         ),
     ];
-    // Seeded uniform numbers in [−1, 1).
-    let mut s = 0x5eed_u64;
-    let mut uniform = move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    for (name, differ, (nq, nv)) in cases {
-        let (mut compared, mut differing) = (0, 0);
-        for _ in 0..256 {
-            let q: Vec<f64> = (0..nq).map(|_| 3.0 * uniform()).collect();
-            let v: Vec<f64> = (0..nv).map(|_| 2.0 * uniform()).collect();
-            let a: Vec<f64> = (0..nv).map(|_| 5.0 * uniform()).collect();
-            let Some((c, d)) = differ(&q, &v, &a) else {
-                eprintln!("this CPU lacks AVX-512 or AVX2 and FMA: the copies are not compared");
-                return;
-            };
-            compared += c;
-            differing += d;
-        }
-        assert!(compared > 0, "{name}: nothing compared");
-        assert_eq!(
-            differing, 0,
-            "{name}: {differing} of {compared} entries differ between the AVX-512 and the AVX2 copy"
-        );
-        eprintln!("{name}: {compared} entries, the same bits in both copies");
-    }
+    compare(
+        &cases,
+        0x5eed,
+        256,
+        "the AVX-512 and the AVX2 copy",
+        "this CPU lacks AVX-512 or AVX2 and FMA: the copies are not compared",
+    );
 }
 
 #[cfg(all(
@@ -80,37 +107,16 @@ fn avx2_copies_give_the_avx512_copies_bits() {
 ))]
 #[test]
 fn avx2_batch_bodies_give_the_single_calls_bits() {
-    type Differ = fn(&[f64], &[f64], &[f64]) -> Option<(usize, usize)>;
     let cases: [(&str, Differ, (usize, usize)); 1] = [(
         "urdf_panda",
         dynamics_tests::generated::urdf_panda::batch_copies_differ,
         dynamics_tests::generated::urdf_panda::BATCH_COPIES_DIMS,
     )];
-    let mut s = 0xba7c_u64;
-    let mut uniform = move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    for (name, differ, (nq, nv)) in cases {
-        let (mut compared, mut differing) = (0, 0);
-        for _ in 0..16 {
-            let q: Vec<f64> = (0..nq).map(|_| 3.0 * uniform()).collect();
-            let v: Vec<f64> = (0..nv).map(|_| 2.0 * uniform()).collect();
-            let a: Vec<f64> = (0..nv).map(|_| 5.0 * uniform()).collect();
-            let Some((c, d)) = differ(&q, &v, &a) else {
-                eprintln!("this CPU lacks AVX2 and FMA: the batch bodies are not compared");
-                return;
-            };
-            compared += c;
-            differing += d;
-        }
-        assert!(compared > 0, "{name}: nothing compared");
-        assert_eq!(
-            differing, 0,
-            "{name}: {differing} of {compared} entries differ between the AVX2 batch body and single calls"
-        );
-        eprintln!("{name}: {compared} entries, the single calls' bits in the AVX2 batch bodies");
-    }
+    compare(
+        &cases,
+        0xba7c,
+        16,
+        "the AVX2 batch body and single calls",
+        "this CPU lacks AVX2 and FMA: the batch bodies are not compared",
+    );
 }

@@ -246,14 +246,9 @@ pub fn batch_functions(
 /// `zeros()`). The single-state function is generated with its batch form (`generate_impl`).
 pub(super) fn per_state(single: &Ident, names: &[Ident], result: &TokenStream) -> TokenStream {
     let call = quote!(|#(#names),*| self.#single(#(#names),*));
-    let Some((first, rest)) = names.split_first() else {
+    let Some((pattern, states)) = zipped(names) else {
         return quote!([self.#single(); B]);
     };
-    let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
-    for n in rest {
-        pattern = quote!((#pattern, #n));
-        states = quote!(#states.zip(#n.iter()));
-    }
     quote! {
         let single = #call;
         let mut out = [#result::zeros(); B];
@@ -262,6 +257,18 @@ pub(super) fn per_state(single: &Ident, names: &[Ident], result: &TokenStream) -
         }
         out
     }
+}
+
+/// The pattern `((a, b), c)` and the iterator `a.iter().zip(b.iter()).zip(c.iter())` over the
+/// arrays `names` of states, or `None` for none.
+fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
+    let (first, rest) = names.split_first()?;
+    let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
+    for n in rest {
+        pattern = quote!((#pattern, #n));
+        states = quote!(#states.zip(#n.iter()));
+    }
+    Some((pattern, states))
 }
 
 /// The statements of a copy's batch function that runs `body`, a body of instructions for
@@ -281,14 +288,10 @@ pub(super) fn per_register(
     result: &TokenStream,
     lanes: &proc_macro2::Literal,
 ) -> TokenStream {
-    let Some((first, rest)) = names.split_first() else {
+    // (No batch function is without states; this keeps the function total.)
+    let Some((pattern, states)) = zipped(names) else {
         return quote!(unsafe { self.#body::<B>() });
     };
-    let (mut pattern, mut states) = (quote!(#first), quote!(#first.iter()));
-    for n in rest {
-        pattern = quote!((#pattern, #n));
-        states = quote!(#states.zip(#n.iter()));
-    }
     quote! {
         let mut out = [#result::zeros(); B];
         let (chunks, _) = out.as_chunks_mut::<#lanes>();

@@ -227,10 +227,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let cfg = dispatch_cfg();
     let avx2_cfg = avx2_cfg();
-    let lanes = proc_macro2::Literal::usize_unsuffixed(match scalar {
-        Scalar::F64 => 8,
-        Scalar::F32 => 16,
-    });
+    let lanes = Isa::Avx512.lanes(scalar);
     let mul_add = used.mul_add.then(|| {
         quote! {
             /// `a·b + c`: fused when `WIDE` (code compiled for AVX-512, which has FMA: one
