@@ -65,10 +65,9 @@ const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_10
 /// called directly (`tests/dispatched_copies.rs`), as a CPU with AVX-512 runs them through the
 /// public functions only for some `B`: each module gets `batch_copies_differ`. The Panda's
 /// forward dynamics (a body of 1,000–2,500 operations: AVX-512 and AVX2 bodies of
-/// instructions beside the vectoriser's) with `B` = 4 and 8. G1's larger bodies, on lanes in
-/// those two copies alone, run their AVX2 instructions through the public functions with
-/// `B` = 4 (`tests/generated_batch.rs`); called from here too, their debug build made this
-/// crate's library much slower to compile.
+/// instructions beside the vectoriser's) with `B` = 4 and 8. Solo-12's forward dynamics, on
+/// lanes in those two copies alone, runs its AVX2 instructions through the public functions
+/// with `B` = 4 (`tests/generated_batch.rs`).
 const BATCH_COPIES: &[(&str, &[&str], &[usize])] =
     &[("urdf_panda", &["forward_dynamics"], &[4, 8])];
 
@@ -123,11 +122,15 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
 
 /// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
 /// a chain in f64 and f32 (std and no_std), a floating tree, mimic joints, armature and
-/// friction, run-time parameters, the Lagrangian route, a humanoid whose largest bodies
-/// run on lanes in the AVX-512 and AVX2 copies alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too small for
-/// the CPU dispatch (its vectorised batch bodies are out-of-line `extern "C"` parts, which
-/// the `no_panic` test's machine-code check reads). Every generated robot has the batch functions; instantiating
-/// them `B` wide for all of them made two test binaries take over ten CPU-minutes each.
+/// friction, run-time parameters, the Lagrangian route, Solo-12 (floating), whose inverse
+/// dynamics (1,310 operations) has AVX-512 and AVX2 bodies of instructions beside the
+/// vectoriser's and whose forward dynamics (2,966) runs on lanes in the AVX-512 and AVX2
+/// copies alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too
+/// small for the CPU dispatch (its vectorised batch bodies are out-of-line `extern "C"` parts,
+/// which the `no_panic` test's machine-code check reads). Every generated robot has the batch
+/// functions; instantiating them `B` wide for all of them made two test binaries take over
+/// ten CPU-minutes each, and G1's (bodies up to 9,700 operations, five copies of each in a
+/// debug build, which does not prune `if const` branches) took the CI run past its 90 minutes.
 const BATCH: &[&str] = &[
     "shipped_ur5",
     "shipped_ur5_f32_no_std",
@@ -141,7 +144,7 @@ const BATCH: &[&str] = &[
     "runtime_shipped_ur5",
     "runtime_tree_208_f64",
     "lagrangian_shipped_ur5",
-    "tree_g1_29dof",
+    "tree_solo12",
 ];
 
 /// The cases generated a second time by the Lagrangian route (`Method::Lagrangian`), as

@@ -2,7 +2,7 @@
 //! `mass_matrix_batch`, `gravity_batch`) against the single-state functions, state by state,
 //! on the robots of `with_batch_cases!`: chains and trees, fixed and floating base, mimic
 //! joints, friction, run-time parameters, both derivation routes, f64 and f32, std and no_std,
-//! and a humanoid whose largest bodies run on lanes in the AVX-512 and AVX2 copies alone (a
+//! and a quadruped whose largest body runs on lanes in the AVX-512 and AVX2 copies alone (a
 //! whole register of states, on a CPU with either) and state by state otherwise
 //! (`tests/dispatched_copies.rs` also calls the AVX2 bodies directly).
 //!

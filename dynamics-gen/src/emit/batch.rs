@@ -272,8 +272,9 @@ fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
 }
 
 /// The statements of a copy's batch function that runs `body`, a body of instructions for
-/// one register of lanes (`body::<L>`, `L` = `lanes`), on the `B` states `L` at a time
-/// (`B` a multiple of `L`; [`super::zmm`]). `result`: `R` of `-> [R; B]`.
+/// one register of lanes (`L` = `lanes` states, not generic: [`super::dispatch`]'s
+/// `token_body_item`), on the `B` states `L` at a time (`B` a multiple of `L`;
+/// [`super::zmm`]). `result`: `R` of `-> [R; B]`. `None` for a function without states.
 ///
 /// Written for one register, the body is compiled once whatever `B` is; with `B` = 2`L`, its
 /// values in two registers each, G1's AVX2 bodies took 189 s to compile in release against
@@ -287,21 +288,18 @@ pub(super) fn per_register(
     names: &[Ident],
     result: &TokenStream,
     lanes: &proc_macro2::Literal,
-) -> TokenStream {
-    // (No batch function is without states; this keeps the function total.)
-    let Some((pattern, states)) = zipped(names) else {
-        return quote!(unsafe { self.#body::<B>() });
-    };
-    quote! {
+) -> Option<TokenStream> {
+    let (pattern, states) = zipped(names)?;
+    Some(quote! {
         let mut out = [#result::zeros(); B];
         let (chunks, _) = out.as_chunks_mut::<#lanes>();
         #(let (#names, _) = #names.as_chunks::<#lanes>();)*
         for (o, #pattern) in chunks.iter_mut().zip(#states) {
             // SAFETY: the function's contract: the copy's features.
-            *o = unsafe { self.#body::<#lanes>(#(#names),*) };
+            *o = unsafe { self.#body(#(#names),*) };
         }
         out
-    }
+    })
 }
 
 /// The impl block with each public `X_batch<const B: usize>` marked `#[inline(never)]` (a

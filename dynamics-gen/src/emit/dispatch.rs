@@ -577,21 +577,22 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             isa.token()
         );
         let lanes = isa.lanes(scalar);
-        let call = match (generic_names.first(), array_elem(&ret)) {
-            (Some(b), Some(elem)) => {
-                let per_register =
-                    super::batch::per_register(&body_z, &arg_names, &quote!(<#elem>), &lanes);
-                quote! {
-                    if const { #b % #lanes == 0 } {
-                        #per_register
-                    } else {
-                        #plain
-                    }
-                }
-            }
-            _ => quote!(unsafe { self.#body_z #fast_turbofish (#(#arg_names),*) }),
+        let (Some(b), Some(elem)) = (generic_names.first(), array_elem(&ret)) else {
+            return (plain.clone(), quote!());
         };
-        let item = token_body_item(isa, &body_z, &fast_generics, &args, &ret, z_body, &doc);
+        let Some(per_register) =
+            super::batch::per_register(&body_z, &arg_names, &quote!(<#elem>), &lanes)
+        else {
+            return (plain.clone(), quote!());
+        };
+        let call = quote! {
+            if const { #b % #lanes == 0 } {
+                #per_register
+            } else {
+                #plain
+            }
+        };
+        let item = token_body_item(isa, &body_z, b, &lanes, &args, &ret, z_body, &doc);
         (call, item)
     };
     let (fast_call, fast_body) = copy(Isa::Avx512, &fast);
@@ -661,9 +662,9 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 ///     (f once per state)
 /// }
 /// unsafe extern "C" fn f_batch_avx512<const B: usize>(&self, args) -> [R; B]  // AVX-512
-/// unsafe fn f_batch_body_avx512<const B: usize>(&self, args) -> [R; B]        // z_body, `Avx512`
+/// unsafe fn f_batch_body_avx512(&self, args of 8 states) -> [R; 8]            // z_body, `Avx512`
 /// unsafe extern "C" fn f_batch_avx2<const B: usize>(&self, args) -> [R; B]    // AVX2 and FMA
-/// unsafe fn f_batch_body_avx2<const B: usize>(&self, args) -> [R; B]          // z_body, `Avx2`
+/// unsafe fn f_batch_body_avx2(&self, args of 4 states) -> [R; 4]              // z_body, `Avx2`
 /// ```
 ///
 /// (The lanes of `f64`; `f32` has twice as many.) The tests of `B` are inline `const`s, so
@@ -726,16 +727,10 @@ fn zmm_only(
              its arithmetic as {prose} instructions (the runtime's `{}`).",
             isa.token()
         );
-        let body_item = token_body_item(
-            isa,
-            &body_z,
-            &quote!(<#generics>),
-            args,
-            ret,
-            &z_body,
-            &body_doc,
-        );
-        let per_register = super::batch::per_register(&body_z, arg_names, &quote!(<#elem>), &lanes);
+        let body_item = token_body_item(isa, &body_z, b, &lanes, args, ret, &z_body, &body_doc);
+        // (`None` for a function without states, which no batch function is.)
+        let per_register = super::batch::per_register(&body_z, arg_names, &quote!(<#elem>), &lanes)
+            .unwrap_or_else(|| per_state.clone());
         let call = quote! {
             if const { #b % #lanes == 0 } && Self::#has() {
                 return unsafe { self.#fast::<#b>(#(#arg_names),*) };
@@ -794,11 +789,16 @@ fn array_elem(ret: &TokenStream) -> Option<TokenStream> {
 }
 
 /// The `unsafe fn name` that runs `z_body`, a body of the runtime's token methods
-/// ([`super::zmm::token_body`]), with `isa`'s token made at its top.
+/// ([`super::zmm::token_body`]), with `isa`'s token made at its top: for one register of
+/// states, `lanes` of them, so not generic. The batch function's `B` (`b`) is that number
+/// in the signature and a `const` inside, so that every `Lanes` of the body is a whole
+/// register, whose token methods are one instruction each (the runtime's `Register`).
+#[allow(clippy::too_many_arguments)]
 fn token_body_item(
     isa: Isa,
     name: &Ident,
-    generics: &TokenStream,
+    b: &Ident,
+    lanes: &proc_macro2::Literal,
     args: &TokenStream,
     ret: &TokenStream,
     z_body: &TokenStream,
@@ -815,6 +815,7 @@ fn token_body_item(
             const WIDE: bool = true;
         )
     });
+    let (args, ret) = (with_literal(args, b, lanes), with_literal(ret, b, lanes));
     quote! {
         #[doc = #doc]
         #[doc = ""]
@@ -824,13 +825,31 @@ fn token_body_item(
         #cfg
         #[inline(always)]
         #[allow(unsafe_code)]
-        unsafe fn #name #generics (#args) #ret {
+        unsafe fn #name(#args) #ret {
+            const #b: usize = #lanes;
             #wide
             // SAFETY: the function's contract: the copy's features.
             let z = unsafe { Self::#token() };
             #z_body
         }
     }
+}
+
+/// `stream` with every identifier `name` replaced by the literal `lit`.
+fn with_literal(stream: &TokenStream, name: &Ident, lit: &proc_macro2::Literal) -> TokenStream {
+    stream
+        .clone()
+        .into_iter()
+        .map(|t| match t {
+            TokenTree::Ident(i) if i == *name => TokenTree::Literal(lit.clone()),
+            TokenTree::Group(g) => {
+                let mut out = Group::new(g.delimiter(), with_literal(&g.stream(), name, lit));
+                out.set_span(g.span());
+                TokenTree::Group(out)
+            }
+            t => t,
+        })
+        .collect()
 }
 
 /// The attributes `attrs` with `#[inline(never)]` (a batch function's, see
@@ -1130,9 +1149,7 @@ mod tests {
         // a body of token methods each, made `unsafe` and given the token at its top.
         for isa in ["avx512", "avx2"] {
             let k = solo
-                .find(&format!(
-                    "unsafe fn inverse_dynamics_batch_body_{isa}<const B: usize>("
-                ))
+                .find(&format!("unsafe fn inverse_dynamics_batch_body_{isa}("))
                 .expect("the body of instructions");
             let body = &solo[k..k + solo[k..].find("\n    }\n").expect("its end")];
             // prettyplease breaks method chains over lines: compare without whitespace.
@@ -1149,10 +1166,15 @@ mod tests {
             // Compiled for one register of states and called once per register.
             let flat: String = solo.split_whitespace().collect();
             let lanes = if isa == "avx512" { 8 } else { 4 };
-            assert!(!flat.contains(&format!("batch_body_{isa}::<B>")));
+            assert!(!flat.contains(&format!("batch_body_{isa}::<")));
             assert!(flat.contains(&format!(
-                "*o=unsafe{{self.inverse_dynamics_batch_body_{isa}::<{lanes}>(q,qd,qdd)}};"
+                "*o=unsafe{{self.inverse_dynamics_batch_body_{isa}(q,qd,qdd)}};"
             )));
+            // For one register: not generic, its `B` that register's lanes.
+            assert!(flat.contains(&format!(
+                "unsafefninverse_dynamics_batch_body_{isa}(&self,q:&[::nalgebra::SVector<f64,19>;{lanes}],"
+            )));
+            assert!(flat.contains(&format!("{{constB:usize={lanes};")));
             assert!(solo.contains(&format!("unsafe fn lanes_{isa}()")));
         }
         // Only for whole registers: for other `B` the copy runs the vectoriser's body, and the
@@ -1173,8 +1195,8 @@ mod tests {
         assert!(wrapper
             .contains("return unsafe { self.forward_dynamics_batch_avx2::<B>(q, qd, tau) };"));
         assert!(wrapper.contains("*o = single(q, qd, tau);"));
-        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx512<const B: usize>("));
-        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx2<const B: usize>("));
+        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx512("));
+        assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx2("));
         for absent in ["_batch_body<", "_batch_portable"].map(|s| format!("forward_dynamics{s}")) {
             assert!(!solo.contains(&absent), "{absent}");
         }

@@ -11,12 +11,12 @@
 //! So the AVX-512 and AVX2 copies of such a body get a body of their own each,
 //! `X_body_avx512` and `X_body_avx2`: the same statements, with every `a + b`, `a − b`,
 //! `a · b`, `a / b`, `−a` and fused multiply-add of lanes a method of a token of the runtime
-//! (`z.add(a, b)`, …), `Avx512` or `Avx2`, which writes one instruction per register when `B`
-//! lanes fill whole registers (AVX-512: 8 `f64`, 16 `f32`; AVX2: 4 and 8) and the operator
-//! otherwise. The token is made from its `unsafe` `new_unchecked` once, at the top of the
-//! body, which is itself an `unsafe fn` called only by its copy (after the run-time check
-//! that chose it). Each method gives its operator's bits, so a state's result is still the
-//! single-state function's bit for bit.
+//! (`z.add(a, b)`, …), `Avx512` or `Avx2`, each one instruction. A body of instructions is
+//! for one register of states (AVX-512: 8 `f64`, 16 `f32`; AVX2: 4 and 8), not generic, and
+//! its batch function runs it once per register. The token is made from its `unsafe`
+//! `new_unchecked` once, at the top of the body, which is itself an `unsafe fn` called only
+//! by its copy (after the run-time check that chose it). Each method gives its operator's
+//! bits, so a state's result is still the single-state function's bit for bit.
 //!
 //! Measured (old and new generated code in one binary, default profile, `B` = 8 against 8
 //! single calls, per state, two runs; README "Batches of states"): in the AVX-512 copy,
