@@ -109,6 +109,18 @@ mod sealed {
     pub trait Sealed {}
 }
 
+/// The function `$name` of a [`Register`] `Lanes<$t, $n>`, held as `$v`: the intrinsic `$f`
+/// on the operands `$x` (see `register!`).
+macro_rules! instruction {
+    ($t:ty, $n:literal, $v:ty, $name:ident, $f:ident, $($x:ident),+) => {
+        #[cfg_attr(debug_assertions, inline)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
+        unsafe fn $name($($x: Self),+) -> Self {
+            unsafe { Lanes(transmute::<$v, [$t; $n]>($f($(transmute::<[$t; $n], $v>($x.0)),+))) }
+        }
+    };
+}
+
 /// [`Register<$token>`] for `Lanes<$t, $n>`, held as the vector type `$v`, with the register
 /// width's intrinsics (add, sub, mul, div, fused multiply-add, xor, broadcast).
 macro_rules! register {
@@ -118,62 +130,11 @@ macro_rules! register {
         // SAFETY (every function): the caller's contract, the features; `$v` is the bytes of
         // `$n` `$t`s, and every bit pattern is valid for both. Inlined as the methods are.
         impl Register<$token> for Lanes<$t, $n> {
-            #[cfg_attr(debug_assertions, inline)]
-            #[cfg_attr(not(debug_assertions), inline(always))]
-            unsafe fn add(a: Self, b: Self) -> Self {
-                unsafe {
-                    let r = $add(
-                        transmute::<[$t; $n], $v>(a.0),
-                        transmute::<[$t; $n], $v>(b.0),
-                    );
-                    Lanes(transmute::<$v, [$t; $n]>(r))
-                }
-            }
-            #[cfg_attr(debug_assertions, inline)]
-            #[cfg_attr(not(debug_assertions), inline(always))]
-            unsafe fn sub(a: Self, b: Self) -> Self {
-                unsafe {
-                    let r = $sub(
-                        transmute::<[$t; $n], $v>(a.0),
-                        transmute::<[$t; $n], $v>(b.0),
-                    );
-                    Lanes(transmute::<$v, [$t; $n]>(r))
-                }
-            }
-            #[cfg_attr(debug_assertions, inline)]
-            #[cfg_attr(not(debug_assertions), inline(always))]
-            unsafe fn mul(a: Self, b: Self) -> Self {
-                unsafe {
-                    let r = $mul(
-                        transmute::<[$t; $n], $v>(a.0),
-                        transmute::<[$t; $n], $v>(b.0),
-                    );
-                    Lanes(transmute::<$v, [$t; $n]>(r))
-                }
-            }
-            #[cfg_attr(debug_assertions, inline)]
-            #[cfg_attr(not(debug_assertions), inline(always))]
-            unsafe fn div(a: Self, b: Self) -> Self {
-                unsafe {
-                    let r = $div(
-                        transmute::<[$t; $n], $v>(a.0),
-                        transmute::<[$t; $n], $v>(b.0),
-                    );
-                    Lanes(transmute::<$v, [$t; $n]>(r))
-                }
-            }
-            #[cfg_attr(debug_assertions, inline)]
-            #[cfg_attr(not(debug_assertions), inline(always))]
-            unsafe fn mul_add(a: Self, b: Self, c: Self) -> Self {
-                unsafe {
-                    let r = $fma(
-                        transmute::<[$t; $n], $v>(a.0),
-                        transmute::<[$t; $n], $v>(b.0),
-                        transmute::<[$t; $n], $v>(c.0),
-                    );
-                    Lanes(transmute::<$v, [$t; $n]>(r))
-                }
-            }
+            instruction!($t, $n, $v, add, $add, a, b);
+            instruction!($t, $n, $v, sub, $sub, a, b);
+            instruction!($t, $n, $v, mul, $mul, a, b);
+            instruction!($t, $n, $v, div, $div, a, b);
+            instruction!($t, $n, $v, mul_add, $fma, a, b, c);
             #[cfg_attr(debug_assertions, inline)]
             #[cfg_attr(not(debug_assertions), inline(always))]
             unsafe fn neg(a: Self) -> Self {
