@@ -1,7 +1,9 @@
 //! No panic paths: every generated function of every generated robot, wrapped in a function
 //! marked `#[no_panic]`, which fails to link if the optimiser cannot prove the wrapper never
 //! panics. Meaningful in release builds only:
-//! `cargo test --release -p dynamics-tests --test no_panic`.
+//! `cargo test --release -p dynamics-tests --test no_panic` (every test robot), or with
+//! `--features sample-robots` (the README's and CI's command: a sample covering every kind of
+//! robot and every generator option, `SAMPLE` in build.rs).
 //!
 //! The `no_std` variants are left out: the `libm::sinf`/`libm::sin` they call for angles
 //! beyond the `joint_sin_cos` helper's range hold bounds checks in their argument reduction that the optimiser cannot prove unreachable, so `no_panic` rejects
@@ -22,7 +24,7 @@
 #[test]
 fn no_panic_checks_run_only_in_release_builds_see_cargo_test_release() {
     eprintln!(
-        "no_panic: skipped in this debug build; run `cargo test --release -p dynamics-tests --test no_panic`"
+        "no_panic: skipped in this debug build; run `cargo test --release -p dynamics-tests --features sample-robots --test no_panic`"
     );
 }
 
