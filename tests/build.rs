@@ -465,6 +465,7 @@ fn main() {
     }
     if std::env::var_os("CARGO_FEATURE_SAMPLE_ROBOTS").is_some() {
         cases.retain(|c| SAMPLE.contains(&c.module.as_str()));
+        check_sample(&cases);
     }
     let mut registry = String::new();
     let mut list = String::new();
@@ -645,6 +646,48 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("trig_kernels.rs"), kernels).expect("OUT_DIR is writable");
+}
+
+/// Panics unless the [`SAMPLE`] of cases holds every kind of robot and every generator option
+/// its doc comment names, so that it stays true when a list here changes.
+fn check_sample(sample: &[Case]) {
+    fn listed(list: &[&str], c: &Case) -> bool {
+        list.contains(&c.module.as_str())
+    }
+    type Kind = (&'static str, fn(&Case) -> bool);
+    let kinds: [Kind; 17] = [
+        ("a serial chain", |c| c.robot.is_serial()),
+        ("a tree", |c| !c.robot.is_serial() && !c.robot.base.floating),
+        ("a floating base", |c| c.robot.base.floating),
+        ("a floating base with derivative functions", |c| {
+            c.robot.base.floating && !listed(WITHOUT_DERIVATIVES, c)
+        }),
+        ("mimic joints", |c| c.robot.has_mimic()),
+        ("armature", |c| {
+            c.robot.joints.iter().any(|j| j.armature() > 0.0)
+        }),
+        ("friction", |c| c.friction.is_some()),
+        ("the Lagrangian route", |c| {
+            c.module.starts_with("lagrangian_")
+        }),
+        ("run-time parameters", |c| c.runtime),
+        ("f32 with std", |c| c.scalar == Scalar::F32 && !c.no_std),
+        ("no_std", |c| c.no_std),
+        ("code without CPU dispatch", |c| c.portable),
+        ("named frames", |c| !c.robot.frames.is_empty()),
+        ("the *_from_sin_cos variants", |c| listed(SIN_COS, c)),
+        ("batch functions", |c| listed(BATCH, c)),
+        ("dispatched copies compared", |c| listed(COPIES, c)),
+        ("batch copies compared", |c| {
+            BATCH_COPIES.iter().any(|(m, _, _)| *m == c.module)
+        }),
+    ];
+    for (kind, has) in kinds {
+        assert!(
+            sample.iter().any(has),
+            "SAMPLE in tests/build.rs has no case with {kind}: add one"
+        );
+    }
 }
 
 /// The source of `sin_cos_variants_differ` for a [`SIN_COS`] module: the inverse dynamics,
