@@ -8,7 +8,10 @@ use nalgebra::{ArrayStorage, SMatrix, Scalar};
 /// the generated `*_batch` functions, whose unrolled code is the single-state code with each
 /// scalar replaced by a `Lanes`. Every arithmetic operation acts lane by lane on fixed-size
 /// arrays, `#[inline(always)]`, so that the compiler vectorises it across the states (4 lanes
-/// of `f64` per AVX2 register, 2 per SSE2 register). Lanes never mix: lane `l` of a result
+/// of `f64` per AVX2 register, 2 per SSE2 register). Where `debug_assertions` are on they are
+/// `#[inline]` instead, as the AVX tokens' register methods are: forced into every operation
+/// of a large body, they took an unoptimised or opt-level-1 build (the tests') a quarter longer
+/// (G1's four batch functions, `B` = 8, at opt-level 1 with debug assertions: 132 → 98 s). Lanes never mix: lane `l` of a result
 /// depends on lane `l` of the operands only, and gives the same bits as the scalar code's
 /// operation on that state. A scalar operand (a constant of the robot, a run-time parameter)
 /// acts on every lane.
@@ -17,14 +20,16 @@ pub struct Lanes<T, const B: usize>(pub [T; B]);
 
 impl<T: Copy, const B: usize> Lanes<T, B> {
     /// Every lane `x`.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
     pub fn splat(x: T) -> Self {
         Self([x; B])
     }
 
     /// `f` applied lane by lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
     pub fn map(self, f: impl Fn(T) -> T) -> Self {
         let mut out = self.0;
@@ -40,7 +45,8 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// (measured: a UR5 batch of 8 in AVX-512, 39 ns per state out of line, 31 inlined). Plain
     /// loops with no indexing the optimiser must prove in range, and no `array::from_fn`
     /// (whose drop guard is a cleanup path): `no_panic` sees no panic through it.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
     pub fn gather<const K: usize>(xs: &[[T; K]; B]) -> [Self; K]
     where
@@ -105,7 +111,8 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
 
     /// A function of an array to two arrays of the same length (such as the sines and
     /// cosines of all its elements) applied to each of `args`, all `B` lanes at once.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
     pub fn each2<const K: usize>(
         args: [Self; K],
@@ -124,7 +131,8 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
 }
 
 impl<T: Copy, const B: usize> From<T> for Lanes<T, B> {
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn from(x: T) -> Self {
         Self::splat(x)
     }
@@ -138,7 +146,8 @@ macro_rules! lane_ops {
         lane_ops!(@op $t, Div, div, /);
         impl<const B: usize> Neg for Lanes<$t, B> {
             type Output = Self;
-            #[inline(always)]
+            #[cfg_attr(debug_assertions, inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             fn neg(self) -> Self {
                 Self(self.0.map(|a| -a))
             }
@@ -147,7 +156,8 @@ macro_rules! lane_ops {
     (@op $t:ty, $trait:ident, $f:ident, $op:tt) => {
         impl<const B: usize> $trait for Lanes<$t, B> {
             type Output = Self;
-            #[inline(always)]
+            #[cfg_attr(debug_assertions, inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             #[allow(clippy::assign_op_pattern)] // `$op`, not `$op=`: the same macro for all four
             fn $f(self, rhs: Self) -> Self {
                 let mut out = self.0;
@@ -159,14 +169,16 @@ macro_rules! lane_ops {
         }
         impl<const B: usize> $trait<$t> for Lanes<$t, B> {
             type Output = Self;
-            #[inline(always)]
+            #[cfg_attr(debug_assertions, inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             fn $f(self, rhs: $t) -> Self {
                 Self(self.0.map(|a| a $op rhs))
             }
         }
         impl<const B: usize> $trait<Lanes<$t, B>> for $t {
             type Output = Lanes<$t, B>;
-            #[inline(always)]
+            #[cfg_attr(debug_assertions, inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             fn $f(self, rhs: Lanes<$t, B>) -> Lanes<$t, B> {
                 Lanes(rhs.0.map(|b| self $op b))
             }
