@@ -163,7 +163,7 @@ const LAGRANGIAN: &[&str] = &[
 ];
 
 /// The cases compiled with the `sample-robots` feature, for the release `no_panic` test and
-/// clippy in CI (the full set is about 330 MB of generated Rust: its release build alone took
+/// clippy in CI (the full set is about 290 MB of generated Rust: its release build alone took
 /// 35 minutes of a 2-core CI machine). Every kind of robot and every option the generator
 /// has: chains (UR5, Panda, rand7, the double pendulum), trees (Talos), floating bases
 /// (Solo-12, G1, a random tree with its derivative functions), mimic joints, armature and
