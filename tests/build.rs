@@ -164,12 +164,8 @@ const LAGRANGIAN: &[&str] = &[
 
 /// The cases compiled with the `sample-robots` feature, for the release `no_panic` test and
 /// clippy in CI (the full set is about 290 MB of generated Rust: its release build alone took
-/// 35 minutes of a 2-core CI machine). Every kind of robot and every option the generator
-/// has: chains (UR5, Panda, rand7, the double pendulum), trees (Talos), floating bases
-/// (Solo-12, G1, a random tree with its derivative functions), mimic joints, armature and
-/// friction, the Lagrangian route, run-time parameters, f32, `no_std`, code without CPU
-/// dispatch, the `*_from_sin_cos` variants and the batch functions; and every case a test,
-/// bench or example names.
+/// 35 minutes of a 2-core CI machine): every kind of robot and generator option
+/// [`check_sample`] names, and every case a test, bench or example names.
 const SAMPLE: &[&str] = &[
     "shipped_ur5",
     "shipped_pendulum",

@@ -10,10 +10,10 @@ use nalgebra::{ArrayStorage, SMatrix, Scalar};
 /// arrays, `#[inline(always)]`, so that the compiler vectorises it across the states (4 lanes
 /// of `f64` per AVX2 register, 2 per SSE2 register). Where `debug_assertions` are on they are
 /// `#[inline]` instead, as the AVX tokens' register methods are: forced into every operation
-/// of a large body, they took an unoptimised or opt-level-1 build (the tests') a quarter longer
-/// (G1's four batch functions, `B` = 8, at opt-level 1 with debug assertions: 132 → 98 s). Lanes never mix: lane `l` of a result
-/// depends on lane `l` of the operands only, and gives the same bits as the scalar code's
-/// operation on that state. A scalar operand (a constant of the robot, a run-time parameter)
+/// of a large body, they made an unoptimised or opt-level-1 build (the tests') a third slower
+/// (G1's four batch functions, `B` = 8, at opt-level 1 with debug assertions: 132 against
+/// 98 s). Lanes never mix: lane `l` of a result depends on lane `l` of the operands only, and
+/// gives the same bits as the scalar code's operation on that state. A scalar operand (a constant of the robot, a run-time parameter)
 /// acts on every lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lanes<T, const B: usize>(pub [T; B]);
