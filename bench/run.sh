@@ -170,6 +170,41 @@ if rows:
     print("\n".join(rows))
 EOF
 
+# 4d. With NATIVE=0: the size of each benchmarked function's AVX-512 and AVX2 copies (functions of
+# their own in the benchmark binary; with NATIVE=1 the code is inlined into criterion's closures), against
+# the CPU's level-1 instruction cache: straight-line code larger than it runs at the rate it can be fetched
+# from level 2 (docs/performance.md, "The trees' largest functions are bound by instruction fetch").
+BENCH_BIN=$(ls -t "$CARGO_TARGET_DIR"/release/deps/dynamics-* 2>/dev/null | grep -v '\.d$' | head -1 || true)
+if [ "${NATIVE:-1}" = 0 ] && [ -n "$BENCH_BIN" ]; then
+  L1I=$(getconf LEVEL1_ICACHE_SIZE 2>/dev/null || echo 0)
+  nm -S -C --defined-only "$BENCH_BIN" > "$CACHE/symbols.txt"
+  "$VENV/bin/python" - "$CACHE/symbols.txt" "$ROOT/tests/benches/dynamics.rs" "${L1I:-0}" $ROBOTS <<'EOF'
+import re, sys
+symbols, bench = open(sys.argv[1]), open(sys.argv[2]).read()
+l1i, robots = int(sys.argv[3]), [r.split("+")[0] for r in sys.argv[4:]]
+module = dict(re.findall(r'bench_robot!\(\s*c,\s*"([^"]+)",\s*(\w+),', bench))
+size = {}
+for line in symbols:
+    parts = line.split(maxsplit=3)
+    if len(parts) == 4 and parts[3].startswith("dynamics_tests::generated::"):
+        size[parts[3].strip()] = int(parts[1], 16)
+def copy(m, f, suffix):
+    hits = [n for k, n in size.items() if k.endswith(f"::{f}_{suffix}") and f"::generated::{m}::" in k]
+    return max(hits) if hits else None
+cell = lambda b: (f"{b:8d}" + ("*" if l1i and b > l1i else " ")) if b else f"{'-':>8} "
+rows = []
+for robot in robots:
+    m = module.get(robot)
+    for f in ["inverse_dynamics", "coriolis", "gravity", "mass_matrix", "forward_dynamics"]:
+        a512, a2 = (copy(m, f, s) if m else None for s in ("avx512", "avx2"))
+        if a512 or a2:
+            rows.append(f"{robot:<16} {f:<18} {cell(a512)} {cell(a2)}")
+if rows:
+    print(f"\n{'robot':<16} {'function':<18} {'AVX-512':>9} {'AVX2':>9}  bytes of machine code; * above L1i ({l1i} bytes)")
+    print("\n".join(rows))
+EOF
+fi
+
 # 5. With CALLGRIND=1: instructions per call, both sides running AVX2 and FMA code (valgrind reports
 # AVX2 and FMA but not AVX-512, so the default build of ours runs its AVX2 copy; Pinocchio is built for
 # x86-64-v3). Each program runs at 1,024 and 2,048 calls; the difference of the counts over 1,024 is the
