@@ -251,6 +251,44 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             const fn wide_lanes(k: usize) -> usize {
                 k.div_ceil(#lanes) * #lanes
             }
+
+            /// The sines and cosines of a dispatched body: [`Self::sin_cos_avx2`] when `WIDE`
+            /// (the AVX-512 and AVX2 copies), [`Self::sin_cos_n`] on
+            /// [`Self::sin_cos_lanes`] otherwise.
+            #[inline(always)]
+            #[allow(unsafe_code)]
+            fn sin_cos_with<const K: usize, const P: usize, const WIDE: bool>(
+                x: [#t; K],
+            ) -> ([#t; P], [#t; P]) {
+                #cfg
+                {
+                    if WIDE {
+                        // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
+                        // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA.
+                        return unsafe { Self::sin_cos_avx2::<K, P>(x) };
+                    }
+                }
+                Self::sin_cos_n::<K, P, WIDE>(x, if WIDE { P } else { Self::sin_cos_lanes(K) })
+            }
+
+            /// [`Self::sin_cos_n`] on all `P` elements, fused, compiled for AVX2 and FMA and
+            /// never inlined: so it runs on 256-bit registers in the AVX-512 copies too, where
+            /// the optimiser would otherwise vectorise it on 512-bit ones. On Intel's AVX-512
+            /// cores those slow down the code around them: the UR5's inverse dynamics took
+            /// twice as long with them (`docs/performance.md`).
+            ///
+            /// # Safety
+            ///
+            /// The CPU has AVX2 and FMA.
+            #cfg
+            #[target_feature(enable = "avx2,fma")]
+            #[inline(never)]
+            #[allow(unsafe_code)]
+            unsafe fn sin_cos_avx2<const K: usize, const P: usize>(
+                x: [#t; K],
+            ) -> ([#t; P], [#t; P]) {
+                Self::sin_cos_n::<K, P, true>(x, P)
+            }
         }
     });
     quote! {
@@ -267,6 +305,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 && ::std::is_x86_feature_detected!("avx512vl")
                 && ::std::is_x86_feature_detected!("avx512dq")
                 && ::std::is_x86_feature_detected!("avx512bw")
+                && ::std::is_x86_feature_detected!("avx2")
                 && ::std::is_x86_feature_detected!("fma")
         }
 
@@ -1005,8 +1044,9 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 /// `Self::mul_add_lanes(` into `Self::mul_add_lanes_with::<_, WIDE>(`, `Self::joint_sin_cos_rows(`
 /// into `Self::sin_cos_rows_with::<_, _, WIDE>(`), and every
 /// `Self::joint_sin_cos::<K, P>(x)` into
-/// `Self::sin_cos_n::<K, { Self::wide_lanes(K) }, WIDE>(x, n)` with `n` the wide lanes when
-/// `WIDE`, [`sin_cos_lanes`](super::trig) otherwise (and the polynomials fused when `WIDE`).
+/// `Self::sin_cos_with::<K, { Self::wide_lanes(K) }, WIDE>(x)`: the wide lanes through
+/// `sin_cos_avx2` when `WIDE` (the polynomials fused), [`sin_cos_lanes`](super::trig)
+/// otherwise.
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let mut out: Vec<TokenTree> = Vec::new();
     let mut tokens = body.into_iter().peekable();
@@ -1063,10 +1103,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                         tokens.next();
                         used.sin_cos = true;
                         let call = quote! {
-                            sin_cos_n::<#k, { Self::wide_lanes(#k) }, WIDE>(
-                                #args,
-                                if WIDE { Self::wide_lanes(#k) } else { Self::sin_cos_lanes(#k) },
-                            )
+                            sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE>(#args)
                         };
                         out.extend(call);
                     }
@@ -1241,7 +1278,7 @@ mod tests {
         let body = &std[std.find("fn inverse_dynamics_body").expect("a body")..];
         let body = &body[..body.find("\n    }\n").expect("its end")];
         assert!(!body.contains("Self::mul_add("));
-        assert!(body.contains("Self::sin_cos_n::<"));
+        assert!(body.contains("Self::sin_cos_with::<"));
         // The batch functions pass their `B` on, and their `Lanes` helpers get `WIDE`.
         assert!(std.contains("pub fn inverse_dynamics_batch<const B: usize>("));
         assert!(std.contains("fn inverse_dynamics_batch_avx512<const B: usize>("));
