@@ -89,7 +89,11 @@ case $CARGO_TARGET_DIR in
 esac
 export CARGO_TARGET_DIR
 echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', CARGO_TARGET_DIR=$CARGO_TARGET_DIR"
-(cd "$ROOT" && cargo bench -p dynamics-tests --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
+# SAMPLE=1: build the test crate with its `sample-robots` feature (the 20 cases of SAMPLE in
+# tests/build.rs, every robot this kit times among them): a third of the build time.
+FEATURES=()
+[ "${SAMPLE:-0}" = 1 ] && FEATURES=(--features sample-robots)
+(cd "$ROOT" && cargo bench -p dynamics-tests "${FEATURES[@]}" --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
 
 # 3. Side by side: criterion medians of this run only (estimates.json newer than START).
 CRIT=$CARGO_TARGET_DIR/criterion
@@ -219,7 +223,7 @@ if [ "${CALLGRIND:-0}" = 1 ]; then
       -L"$P/lib" -Wl,-rpath,"$P/lib" -lboost_serialization
     mv "$PBIN.tmp" "$PBIN"
   fi
-  (cd "$ROOT" && cargo build -q --release -p dynamics-tests --example calls)
+  (cd "$ROOT" && cargo build -q --release -p dynamics-tests "${FEATURES[@]}" --example calls)
   EX=$CARGO_TARGET_DIR/release/examples/calls
   instr() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
   per_call() { # program args with the call count last or as --calls
