@@ -252,7 +252,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 k.div_ceil(#lanes) * #lanes
             }
 
-            /// The sines and cosines of a dispatched body: `sin_cos_avx2` when `WIDE`
+            /// The sines and cosines of a dispatched body: `sin_cos_ymm` when `WIDE`
             /// (the AVX-512 and AVX2 copies), [`Self::sin_cos_n`] on
             /// [`Self::sin_cos_lanes`] otherwise.
             #[inline(always)]
@@ -265,7 +265,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                     if WIDE {
                         // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
                         // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA.
-                        return unsafe { Self::sin_cos_avx2::<K, P>(x) };
+                        return unsafe { Self::sin_cos_ymm::<K, P>(x) };
                     }
                 }
                 Self::sin_cos_n::<K, P, WIDE>(x, if WIDE { P } else { Self::sin_cos_lanes(K) })
@@ -284,7 +284,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             #[target_feature(enable = "avx2,fma")]
             #[inline(never)]
             #[allow(unsafe_code)]
-            unsafe fn sin_cos_avx2<const K: usize, const P: usize>(
+            unsafe fn sin_cos_ymm<const K: usize, const P: usize>(
                 x: [#t; K],
             ) -> ([#t; P], [#t; P]) {
                 Self::sin_cos_n::<K, P, true>(x, P)
@@ -553,7 +553,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     );
     let body_doc = format!(
         " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds, and the sines and cosines \
-         through `sin_cos_avx2` (256-bit registers) when it has more than one angle."
+         through `sin_cos_ymm` (256-bit registers) when it has more than one angle."
     );
     let (fast_generics, fast_turbofish) = if generic_names.is_empty() {
         (quote!(), quote!())
@@ -1045,7 +1045,7 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 /// into `Self::sin_cos_rows_with::<_, _, WIDE>(`), and every
 /// `Self::joint_sin_cos::<K, P>(x)` into
 /// `Self::sin_cos_with::<K, { Self::wide_lanes(K) }, WIDE>(x)`: the wide lanes through
-/// `sin_cos_avx2` when `WIDE` (the polynomials fused), [`sin_cos_lanes`](super::trig)
+/// `sin_cos_ymm` when `WIDE` (the polynomials fused), [`sin_cos_lanes`](super::trig)
 /// otherwise.
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let mut out: Vec<TokenTree> = Vec::new();
