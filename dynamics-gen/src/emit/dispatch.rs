@@ -84,8 +84,9 @@
 //! than [`MIN_TOKENS`] tokens.
 
 use crate::options::Scalar;
-use proc_macro2::{Delimiter, Group, Ident, Span, TokenStream, TokenTree};
+use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
+use std::collections::BTreeMap;
 
 /// The `cfg` under which the dispatch exists.
 fn dispatch_cfg() -> TokenStream {
@@ -252,30 +253,40 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 k.div_ceil(#lanes) * #lanes
             }
 
-            /// The sines and cosines of a dispatched body: `sin_cos_ymm` when `WIDE`
-            /// (the AVX-512 and AVX2 copies), [`Self::sin_cos_n`] on
+            /// The sines and cosines of a dispatched body's angles `angles(q)`: through
+            /// `sin_cos_ymm` when `WIDE` (the AVX-512 and AVX2 copies), [`Self::sin_cos_n`] on
             /// [`Self::sin_cos_lanes`] otherwise.
             #[inline(always)]
             #[allow(unsafe_code)]
-            fn sin_cos_with<const K: usize, const P: usize, const WIDE: bool>(
-                x: [#t; K],
-            ) -> ([#t; P], [#t; P]) {
+            fn sin_cos_with<const K: usize, const P: usize, const WIDE: bool, Q, F>(
+                q: Q,
+                angles: F,
+            ) -> ([#t; P], [#t; P])
+            where
+                F: FnOnce(Q) -> [#t; K],
+            {
                 #cfg
                 {
                     if WIDE {
                         // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
                         // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA.
-                        return unsafe { Self::sin_cos_ymm::<K, P>(x) };
+                        return unsafe { Self::sin_cos_ymm::<K, P, Q, F>(q, angles) };
                     }
                 }
-                Self::sin_cos_n::<K, P, WIDE>(x, if WIDE { P } else { Self::sin_cos_lanes(K) })
+                Self::sin_cos_n::<K, P, WIDE>(
+                    angles(q),
+                    if WIDE { P } else { Self::sin_cos_lanes(K) },
+                )
             }
 
-            /// [`Self::sin_cos_n`] on all `P` elements, fused, compiled for AVX2 and FMA and
-            /// never inlined: so it runs on 256-bit registers in the AVX-512 copies too, where
-            /// the optimiser would otherwise vectorise it on 512-bit ones. On Intel's AVX-512
-            /// cores those slow down the code around them (measured on a Xeon, Emerald Rapids:
-            /// a 6-joint arm's inverse dynamics took twice as long with them).
+            /// [`Self::sin_cos_n`] of `angles(q)` on all `P` elements, fused, compiled for
+            /// AVX2 and FMA and never inlined: so it runs on 256-bit registers in the AVX-512
+            /// copies too, where the optimiser would otherwise vectorise it on 512-bit ones.
+            /// On Intel's AVX-512 cores those slow down the code around them (measured on a
+            /// Xeon, Emerald Rapids: a 6-joint arm's inverse dynamics took twice as long with
+            /// them). The angles are computed here too, from `q` (the caller's joint
+            /// positions): the joint offsets' additions, vectorised, were the only 512-bit
+            /// instructions left in a floating-base tree's copies.
             ///
             /// # Safety
             ///
@@ -284,10 +295,14 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             #[target_feature(enable = "avx2,fma")]
             #[inline(never)]
             #[allow(unsafe_code)]
-            unsafe fn sin_cos_ymm<const K: usize, const P: usize>(
-                x: [#t; K],
-            ) -> ([#t; P], [#t; P]) {
-                Self::sin_cos_n::<K, P, true>(x, P)
+            unsafe fn sin_cos_ymm<const K: usize, const P: usize, Q, F>(
+                q: Q,
+                angles: F,
+            ) -> ([#t; P], [#t; P])
+            where
+                F: FnOnce(Q) -> [#t; K],
+            {
+                Self::sin_cos_n::<K, P, true>(angles(q), P)
             }
         }
     });
@@ -1048,6 +1063,134 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 /// `sin_cos_ymm` when `WIDE` (the polynomials fused), [`sin_cos_lanes`](super::trig)
 /// otherwise.
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
+    let inputs = input_names(&body);
+    let out = wide_tokens(body, used, &inputs);
+    // Inputs now read by a kernel's `joints[i]` alone: `_` in the pattern (the only
+    // place left that names them), or the compiler warns of an unused variable.
+    let unread: Vec<&String> = inputs
+        .keys()
+        .filter(|name| ident_count(&out, name) == 1)
+        .collect();
+    if unread.is_empty() {
+        out
+    } else {
+        unbind(out, &unread)
+    }
+}
+
+/// How many times the identifier `name` occurs in `stream`, groups' contents included.
+fn ident_count(stream: &TokenStream, name: &str) -> usize {
+    stream
+        .clone()
+        .into_iter()
+        .map(|t| match t {
+            TokenTree::Ident(i) => usize::from(i == name),
+            TokenTree::Group(g) => ident_count(&g.stream(), name),
+            _ => 0,
+        })
+        .sum()
+}
+
+/// `stream` with the identifiers `names` replaced by `_`.
+fn unbind(stream: TokenStream, names: &[&String]) -> TokenStream {
+    stream
+        .into_iter()
+        .map(|t| match t {
+            TokenTree::Ident(i) if names.iter().any(|n| i == n) => {
+                TokenTree::Ident(Ident::new("_", i.span()))
+            }
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), unbind(g.stream(), names));
+                new.set_span(g.span());
+                TokenTree::Group(new)
+            }
+            other => other,
+        })
+        .collect()
+}
+
+/// The inputs a body takes apart (`let [[q0, q1, _, …]] = q.data.0;`, top level): each
+/// name with its argument and index.
+fn input_names(body: &TokenStream) -> BTreeMap<String, (Ident, usize)> {
+    let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
+    let mut names = BTreeMap::new();
+    for w in tokens.windows(9) {
+        let [TokenTree::Ident(l), TokenTree::Group(outer), TokenTree::Punct(eq), TokenTree::Ident(arg), TokenTree::Punct(d1), TokenTree::Ident(data), TokenTree::Punct(d2), TokenTree::Literal(zero), TokenTree::Punct(semi)] =
+            w
+        else {
+            continue;
+        };
+        if l != "let"
+            || outer.delimiter() != Delimiter::Bracket
+            || eq.as_char() != '='
+            || d1.as_char() != '.'
+            || data != "data"
+            || d2.as_char() != '.'
+            || zero.to_string() != "0"
+            || semi.as_char() != ';'
+        {
+            continue;
+        }
+        let inner: Vec<TokenTree> = outer.stream().into_iter().collect();
+        let [TokenTree::Group(inner)] = inner.as_slice() else {
+            continue;
+        };
+        let elements = inner
+            .stream()
+            .into_iter()
+            .filter(|t| !matches!(t, TokenTree::Punct(p) if p.as_char() == ','));
+        for (i, t) in elements.enumerate() {
+            if let TokenTree::Ident(name) = t {
+                if name != "_" {
+                    names.insert(name.to_string(), (arg.clone(), i));
+                }
+            }
+        }
+    }
+    names
+}
+
+/// `args` (the angles of a `joint_sin_cos` call) with every input of the argument they read
+/// replaced by `joints[i]`, and that argument; `None` where they read anything but one
+/// argument's inputs, constants and `Self::mul_add_with::<WIDE>`.
+fn angles_of_input(
+    args: &TokenStream,
+    inputs: &BTreeMap<String, (Ident, usize)>,
+    arg: &mut Option<Ident>,
+) -> Option<TokenStream> {
+    let mut out = TokenStream::new();
+    for t in args.clone() {
+        match t {
+            TokenTree::Ident(i) => match inputs.get(&i.to_string()) {
+                Some((from, k)) => {
+                    if arg.get_or_insert_with(|| from.clone()) != from {
+                        return None;
+                    }
+                    let k = Literal::usize_unsuffixed(*k);
+                    out.extend(quote!(joints[#k]));
+                }
+                None if ["Self", "mul_add_with", "WIDE"].iter().any(|n| i == n) => {
+                    out.extend([TokenTree::Ident(i)]);
+                }
+                None => return None,
+            },
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), angles_of_input(&g.stream(), inputs, arg)?);
+                new.set_span(g.span());
+                out.extend([TokenTree::Group(new)]);
+            }
+            other => out.extend([other]),
+        }
+    }
+    Some(out)
+}
+
+/// [`wide_body`] of `body`, a part of a body whose inputs are `inputs`.
+fn wide_tokens(
+    body: TokenStream,
+    used: &mut Used,
+    inputs: &BTreeMap<String, (Ident, usize)>,
+) -> TokenStream {
     let mut out: Vec<TokenTree> = Vec::new();
     let mut tokens = body.into_iter().peekable();
     while let Some(tt) = tokens.next() {
@@ -1086,7 +1229,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                     (true, Some(TokenTree::Group(g)))
                         if g.delimiter() == Delimiter::Parenthesis =>
                     {
-                        Some(wide_body(g.stream(), used))
+                        Some(wide_tokens(g.stream(), used, inputs))
                     }
                     _ => None,
                 };
@@ -1099,11 +1242,25 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                         tokens.next();
                         out.extend(quote!(sin_cos_n::<1, 1, WIDE>(#args, 1)));
                     }
+                    // Several: computed in the kernel from the input itself where the
+                    // angles read one argument's inputs only, from a copy of them otherwise.
                     (Some(k), Some(args)) => {
                         tokens.next();
                         used.sin_cos = true;
-                        let call = quote! {
-                            sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE>(#args)
+                        let mut arg = None;
+                        let call = match angles_of_input(&args, inputs, &mut arg).zip(arg) {
+                            Some((angles, arg)) => quote! {
+                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                    &#arg.data.0[0],
+                                    |joints| #angles,
+                                )
+                            },
+                            None => quote! {
+                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                    (),
+                                    move |()| #args,
+                                )
+                            },
                         };
                         out.extend(call);
                     }
@@ -1114,7 +1271,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
                 }
             }
             TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), wide_body(g.stream(), used));
+                let mut new = Group::new(g.delimiter(), wide_tokens(g.stream(), used, inputs));
                 new.set_span(g.span());
                 out.push(TokenTree::Group(new));
             }
