@@ -1114,11 +1114,19 @@ fn unbind(stream: TokenStream, names: &[&String]) -> TokenStream {
         .collect()
 }
 
-/// The inputs a body takes apart (`let [[q0, q1, _, …]] = q.data.0;`, top level): each
-/// name with its argument and index.
+/// The inputs a body takes apart (`let [[q0, q1, _, …]] = q.data.0;`, at its top level or
+/// in a block, as `let tau = { … };` of an actuated robot): each name with its argument and
+/// index.
 fn input_names(body: &TokenStream) -> BTreeMap<String, (Ident, usize)> {
     let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
     let mut names = BTreeMap::new();
+    for t in &tokens {
+        if let TokenTree::Group(g) = t {
+            if g.delimiter() == Delimiter::Brace {
+                names.extend(input_names(&g.stream()));
+            }
+        }
+    }
     for w in tokens.windows(9) {
         let [TokenTree::Ident(l), TokenTree::Group(outer), TokenTree::Punct(eq), TokenTree::Ident(arg), TokenTree::Punct(d1), TokenTree::Ident(data), TokenTree::Punct(d2), TokenTree::Literal(zero), TokenTree::Punct(semi)] =
             w
