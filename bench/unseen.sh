@@ -58,7 +58,7 @@ GEN=$ROOT/target/release/dynamics-gen
 "$GEN" generate "$WORK/baxter_left_arm.urdf" --no-runtime-trait --functions $F --name BaxterLeftArm -o "$OUT/baxter_left_arm.rs" 2>/dev/null
 {
   for m in xarm7 xarm7_snapped baxter_left_arm; do
-    echo "mod $m { include!(concat!(env!(\"CARGO_MANIFEST_DIR\"), \"/src/generated/$m.rs\")); }"
+    echo "#[allow(dead_code)] mod $m { include!(concat!(env!(\"CARGO_MANIFEST_DIR\"), \"/src/generated/$m.rs\")); }"
   done
 } > "$OUT/arms.rs"
 

@@ -1079,7 +1079,7 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     if unread.is_empty() {
         out
     } else {
-        unbind(out, &unread)
+        without_empty_patterns(unbind(out, &unread))
     }
 }
 
@@ -1128,39 +1128,79 @@ fn input_names(body: &TokenStream) -> BTreeMap<String, (Ident, usize)> {
         }
     }
     for w in tokens.windows(9) {
-        let [TokenTree::Ident(l), TokenTree::Group(outer), TokenTree::Punct(eq), TokenTree::Ident(arg), TokenTree::Punct(d1), TokenTree::Ident(data), TokenTree::Punct(d2), TokenTree::Literal(zero), TokenTree::Punct(semi)] =
-            w
-        else {
+        let Some((arg, elements)) = taken_apart(w) else {
             continue;
         };
-        if l != "let"
-            || outer.delimiter() != Delimiter::Bracket
-            || eq.as_char() != '='
-            || d1.as_char() != '.'
-            || data != "data"
-            || d2.as_char() != '.'
-            || zero.to_string() != "0"
-            || semi.as_char() != ';'
-        {
-            continue;
-        }
-        let inner: Vec<TokenTree> = outer.stream().into_iter().collect();
-        let [TokenTree::Group(inner)] = inner.as_slice() else {
-            continue;
-        };
-        let elements = inner
-            .stream()
-            .into_iter()
-            .filter(|t| !matches!(t, TokenTree::Punct(p) if p.as_char() == ','));
-        for (i, t) in elements.enumerate() {
-            if let TokenTree::Ident(name) = t {
-                if name != "_" {
-                    names.insert(name.to_string(), (arg.clone(), i));
-                }
+        for (i, name) in elements.into_iter().enumerate() {
+            if let Some(name) = name {
+                names.insert(name, (arg.clone(), i));
             }
         }
     }
     names
+}
+
+/// The argument and the bound names (`None` for `_`) of the nine tokens
+/// `let [[q0, _, …]] = q.data.0;`, if `w` is such a statement.
+fn taken_apart(w: &[TokenTree]) -> Option<(Ident, Vec<Option<String>>)> {
+    let [TokenTree::Ident(l), TokenTree::Group(outer), TokenTree::Punct(eq), TokenTree::Ident(arg), TokenTree::Punct(d1), TokenTree::Ident(data), TokenTree::Punct(d2), TokenTree::Literal(zero), TokenTree::Punct(semi)] =
+        w
+    else {
+        return None;
+    };
+    if l != "let"
+        || outer.delimiter() != Delimiter::Bracket
+        || eq.as_char() != '='
+        || d1.as_char() != '.'
+        || data != "data"
+        || d2.as_char() != '.'
+        || zero.to_string() != "0"
+        || semi.as_char() != ';'
+    {
+        return None;
+    }
+    let inner: Vec<TokenTree> = outer.stream().into_iter().collect();
+    let [TokenTree::Group(inner)] = inner.as_slice() else {
+        return None;
+    };
+    let elements = inner
+        .stream()
+        .into_iter()
+        .filter(|t| !matches!(t, TokenTree::Punct(p) if p.as_char() == ','))
+        .map(|t| match t {
+            TokenTree::Ident(name) if name != "_" => Some(name.to_string()),
+            _ => None,
+        })
+        .collect();
+    Some((arg.clone(), elements))
+}
+
+/// `stream` without the statements that take an input apart and bind none of it
+/// (`let [[_, _, _]] = q.data.0;`, left where the kernel reads every input the body used).
+fn without_empty_patterns(stream: TokenStream) -> TokenStream {
+    let tokens: Vec<TokenTree> = stream.into_iter().collect();
+    let mut out = Vec::with_capacity(tokens.len());
+    let mut k = 0;
+    while k < tokens.len() {
+        let empty = tokens
+            .get(k..k + 9)
+            .and_then(taken_apart)
+            .is_some_and(|(_, names)| names.iter().all(Option::is_none));
+        if empty {
+            k += 9;
+            continue;
+        }
+        out.push(match &tokens[k] {
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
+                let mut new = Group::new(g.delimiter(), without_empty_patterns(g.stream()));
+                new.set_span(g.span());
+                TokenTree::Group(new)
+            }
+            other => other.clone(),
+        });
+        k += 1;
+    }
+    out.into_iter().collect()
 }
 
 /// `args` (the angles of a `joint_sin_cos` call) with every input of the argument they read
@@ -1439,8 +1479,8 @@ mod tests {
         .generate()
         .expect("generates");
         let flat: String = talos.split_whitespace().collect();
-        let body = &flat[flat.find("fngravity_body<").expect("a body")..];
-        let body = &body[..body.find("fninverse_dynamics").unwrap_or(body.len())];
+        let body = &flat[flat.find("fninverse_dynamics_body<").expect("a body")..];
+        let body = &body[..body.find("fnforward_dynamics").unwrap_or(body.len())];
         let call = &body[body.find("Self::sin_cos_with::<").expect("the kernel")..];
         let call = &call[..call.find(';').expect("the statement's end")];
         assert!(
@@ -1455,12 +1495,21 @@ mod tests {
         let words: Vec<&str> = body
             .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .collect();
-        let pattern = &body[body.find("let[[").expect("the pattern") + 5..];
-        let pattern = &pattern[..pattern.find("]]").expect("its end")];
-        for name in pattern.split(',').filter(|n| *n != "_") {
-            let reads = words.iter().filter(|w| *w == &name).count();
-            assert!(reads > 1, "{name} unread: {pattern}");
+        for (at, _) in body.match_indices("let[[") {
+            let pattern = &body[at + 5..];
+            let pattern = &pattern[..pattern.find("]]").expect("its end")];
+            for name in pattern.split(',').filter(|n| *n != "_") {
+                let reads = words.iter().filter(|w| *w == &name).count();
+                assert!(reads > 1, "{name} unread: {pattern}");
+            }
         }
+        // Where the kernel reads every input the body used, no pattern is left.
+        let ur5 = crate::Builder::new("ur5").generate().expect("generates");
+        let flat: String = ur5.split_whitespace().collect();
+        let body = &flat[flat.find("fnjacobian_space_body<").expect("a body")..];
+        let body = &body[..body.find("fnjacobian_body").unwrap_or(body.len())];
+        assert!(body.contains("(&q.data.0[0],|joints|"), "{body}");
+        assert!(!body.contains("=q.data.0;"), "{body}");
     }
 
     #[test]
