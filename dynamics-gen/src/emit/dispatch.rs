@@ -1072,46 +1072,31 @@ fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let out = wide_tokens(body, used, &inputs);
     // Inputs now read by a kernel's `joints[i]` alone: `_` in the pattern (the only
     // place left that names them), or the compiler warns of an unused variable.
-    let unread: Vec<&String> = inputs
-        .keys()
-        .filter(|name| ident_count(&out, name) == 1)
-        .collect();
-    if unread.is_empty() {
-        out
-    } else {
-        without_empty_patterns(unbind(out, &unread))
+    let mut uses: BTreeMap<String, usize> = inputs.keys().map(|n| (n.clone(), 0)).collect();
+    count_uses(&out, &mut uses);
+    if uses.values().all(|&n| n > 1) {
+        return out;
     }
+    let unbound = super::function::map_idents(out, &|i| {
+        (uses.get(&i.to_string()) == Some(&1)).then(|| Ident::new("_", i.span()))
+    });
+    without_empty_patterns(unbound)
 }
 
-/// How many times the identifier `name` occurs in `stream`, groups' contents included.
-fn ident_count(stream: &TokenStream, name: &str) -> usize {
-    stream
-        .clone()
-        .into_iter()
-        .map(|t| match t {
-            TokenTree::Ident(i) => usize::from(i == name),
-            TokenTree::Group(g) => ident_count(&g.stream(), name),
-            _ => 0,
-        })
-        .sum()
-}
-
-/// `stream` with the identifiers `names` replaced by `_`.
-fn unbind(stream: TokenStream, names: &[&String]) -> TokenStream {
-    stream
-        .into_iter()
-        .map(|t| match t {
-            TokenTree::Ident(i) if names.iter().any(|n| i == n) => {
-                TokenTree::Ident(Ident::new("_", i.span()))
+/// Adds to `uses` the occurrences in `stream` (groups' contents included) of the
+/// identifiers it has.
+fn count_uses(stream: &TokenStream, uses: &mut BTreeMap<String, usize>) {
+    for t in stream.clone() {
+        match t {
+            TokenTree::Ident(i) => {
+                if let Some(n) = uses.get_mut(&i.to_string()) {
+                    *n += 1;
+                }
             }
-            TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), unbind(g.stream(), names));
-                new.set_span(g.span());
-                TokenTree::Group(new)
-            }
-            other => other,
-        })
-        .collect()
+            TokenTree::Group(g) => count_uses(&g.stream(), uses),
+            _ => {}
+        }
+    }
 }
 
 /// The inputs a body takes apart (`let [[q0, q1, _, …]] = q.data.0;`, at its top level or
@@ -1510,6 +1495,24 @@ mod tests {
         let body = &body[..body.find("fnjacobian_body").unwrap_or(body.len())];
         assert!(body.contains("(&q.data.0[0],|joints|"), "{body}");
         assert!(!body.contains("=q.data.0;"), "{body}");
+    }
+
+    /// Angles that read anything but one argument's inputs go through a copy, and the
+    /// inputs they read stay bound.
+    #[test]
+    fn other_angles_go_through_a_copy() {
+        let body = quote::quote! {
+            let [[q0, q1]] = q.data.0;
+            let t0 = q0 * 2.0;
+            let ([s0, s1, ..], [c0, c1, ..]) =
+                Self::joint_sin_cos::<2, { Self::sin_cos_lanes(2) }>([t0, q1 + 0.5]);
+        };
+        let out: String = super::wide_body(body, &mut super::Used::default())
+            .to_string()
+            .split_whitespace()
+            .collect();
+        assert!(out.contains("let[[q0,q1]]=q.data.0;"), "{out}");
+        assert!(out.contains("WIDE,_,_>((),move|()|[t0,q1+0.5],)"), "{out}");
     }
 
     #[test]

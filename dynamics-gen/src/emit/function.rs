@@ -254,7 +254,7 @@ fn rename(tokens: TokenStream, names: &std::collections::HashMap<String, Ident>)
 
 /// `tokens` with every identifier for which `f` gives a replacement replaced, inside groups
 /// too (their spans kept).
-fn map_idents(tokens: TokenStream, f: &impl Fn(&Ident) -> Option<Ident>) -> TokenStream {
+pub(super) fn map_idents(tokens: TokenStream, f: &impl Fn(&Ident) -> Option<Ident>) -> TokenStream {
     use proc_macro2::{Group, TokenTree};
     tokens
         .into_iter()
