@@ -12,6 +12,9 @@
 #   bash bench/unseen.sh
 #   NATIVE=0 CODEGEN=1 bash bench/unseen.sh
 #   BY_REF=1 ...: our results to black_box by reference (as Pinocchio's stay in its Data)
+#   ROUNDS=3 (default): Pinocchio's benchmark and ours run alternately this many times, and each
+#   side keeps its lowest median per function (as run_codegen.sh does for the code generation):
+#   on a shared machine a neighbour's burst then slows one round, not one side's whole figure.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
@@ -62,15 +65,16 @@ GEN=$ROOT/target/release/dynamics-gen
   done
 } > "$OUT/arms.rs"
 
-# 3. Pinocchio, then ours, back to back.
+# 3. Pinocchio and ours, alternately, ROUNDS times.
 for r in xarm7 baxter_left_arm; do
   "$VENV/bin/python" -c 'import sys, pinocchio as pin
 pin.buildModelFromUrdf(sys.argv[1]).saveToBinary(sys.argv[2])' "$WORK/$r.urdf" "$CACHE/models/$r.bin"
 done
-echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0"
-"$CACHE/pinocchio_bench" --calls 20000 --reps 5 xarm7="$CACHE/models/xarm7.bin" \
-  baxter_left_arm="$CACHE/models/baxter_left_arm.bin" | tee "$WORK/pinocchio.txt"
-# CODEGEN=1: Pinocchio's code-generated functions too (bench/run_codegen.sh; a long first run).
+ROUNDS=${ROUNDS:-3}
+echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0; $ROUNDS rounds"
+# CODEGEN=1: Pinocchio's code-generated functions too (bench/run_codegen.sh; a long first run;
+# its own CG_ROUNDS, best of each).
+: > "$WORK/pinocchio.txt"
 if [ "${CODEGEN:-0}" = 1 ]; then
   ROBOTS="xarm7=$WORK/xarm7.urdf baxter_left_arm=$WORK/baxter_left_arm.urdf" CALLS=20000 \
     bash "$HERE/run_codegen.sh" >/dev/null
@@ -80,7 +84,14 @@ if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=n
 FEATURES=()
 if [ "${BY_REF:-0}" = 1 ]; then FEATURES=(--features by-ref); fi
 echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'${FEATURES:+, results to black_box by reference}"
-(cd "$HERE/unseen" && cargo run -q --release "${FEATURES[@]}") | tee "$WORK/ours.txt"
+(cd "$HERE/unseen" && cargo build -q --release "${FEATURES[@]}")
+: > "$WORK/ours.txt"
+for round in $(seq "$ROUNDS"); do
+  echo "# round $round of $ROUNDS"
+  "$CACHE/pinocchio_bench" --calls 20000 --reps 5 xarm7="$CACHE/models/xarm7.bin" \
+    baxter_left_arm="$CACHE/models/baxter_left_arm.bin" | tee -a "$WORK/pinocchio.txt"
+  (cd "$HERE/unseen" && cargo run -q --release "${FEATURES[@]}") | tee -a "$WORK/ours.txt"
+done
 
 # 4. Side by side (xarm7_snapped against Pinocchio on the file as written).
 "$VENV/bin/python" - "$WORK/pinocchio.txt" "$WORK/ours.txt" <<'PY'
@@ -91,12 +102,16 @@ algo = {"inverse_dynamics": "rnea", "coriolis": "nle", "mass_matrix": "crba", "g
 pin = {}
 for line in open(sys.argv[1]):
     robot, _nv, a, med, _mn = line.split()
-    pin[(robot, a)] = float(med)
+    pin[(robot, a)] = min(float(med), pin.get((robot, a), float("inf")))
+# Each side's lowest median over the rounds, in the order of the first round.
+ours = {}
+for line in open(sys.argv[2]):
+    robot, f, ns = line.split()
+    ours[(robot, f)] = min(float(ns), ours.get((robot, f), float("inf")))
 cg = any(a.startswith("cg_") for _, a in pin)
 print(f"\n{'robot':<16} {'ours':<34} {'ours_ns':>8} {'pinocchio':<19} {'pin_ns':>8} {'ratio':>6}"
       + (f" {'codegen_ns':>10} {'ratio':>6}" if cg else ""))
-for line in open(sys.argv[2]):
-    robot, f, ns = line.split()
+for (robot, f), ns in ours.items():
     r = robot.replace("_snapped", "")
     p = pin.get((r, algo[f]))
     row = f"{robot:<16} {f:<34} {float(ns):8.1f} {algo[f]:<19} {p:8.1f} {p / float(ns):5.1f}x"
