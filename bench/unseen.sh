@@ -114,9 +114,9 @@ print(f"\n{'robot':<16} {'ours':<34} {'ours_ns':>8} {'pinocchio':<19} {'pin_ns':
 for (robot, f), ns in ours.items():
     r = robot.replace("_snapped", "")
     p = pin.get((r, algo[f]))
-    row = f"{robot:<16} {f:<34} {float(ns):8.1f} {algo[f]:<19} {p:8.1f} {p / float(ns):5.1f}x"
+    row = f"{robot:<16} {f:<34} {ns:8.1f} {algo[f]:<19} {p:8.1f} {p / ns:5.1f}x"
     c = pin.get((r, "cg_" + algo[f]))
     if c is not None:
-        row += f" {c:10.1f} {c / float(ns):5.1f}x"
+        row += f" {c:10.1f} {c / ns:5.1f}x"
     print(row)
 PY

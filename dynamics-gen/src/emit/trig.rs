@@ -184,27 +184,19 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     let reduce = if no_std {
         unfused
     } else {
-        let fused_pieces: Vec<TokenStream> = match scalar {
+        let [q1, q2, q3] = match scalar {
             Scalar::F64 => [
                 std::f64::consts::FRAC_PI_2,
                 6.123233995736766e-17,
                 -1.4973849048591698e-33,
-            ]
-            .iter()
-            .map(|&x| lit(x))
-            .collect(),
+            ],
             Scalar::F32 => [
                 f64::from(std::f32::consts::FRAC_PI_2),
                 -4.371138828673793e-08,
                 -1.7151245100058819e-15,
-            ]
-            .iter()
-            .map(|&x| lit(x))
-            .collect(),
-        };
-        let [q1, q2, q3] = &fused_pieces[..] else {
-            unreachable!("three pieces")
-        };
+            ],
+        }
+        .map(lit);
         quote! {
             let (h, l) = if F || cfg!(target_feature = "fma") {
                 let h = fma(-k, #q1, x);
