@@ -523,6 +523,9 @@ fn main() {
         {
             copies += &batch_copies_helper(nq, nv, s, functions, widths);
         }
+        if BATCH.contains(&case.module.as_str()) {
+            copies += &batch_instances(s);
+        }
         writeln!(
             modules,
             "pub mod {m} {{ include!(concat!(env!(\"OUT_DIR\"), \"/{file}\")); {copies}}}\nadapter!({m}, {nq}, {nv}, {s}{frames});",
@@ -788,6 +791,32 @@ pub fn batch_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usize, us
 pub const BATCH_COPIES_DIMS: (usize, usize) = ({nq}, {nv});
 "#,
         tally = tally(s)
+    )
+}
+
+/// The source of `batch_instances` for a [`BATCH`] module: the batch functions at the widths
+/// the tests call them with (4 states, and a whole AVX-512 register), instantiated in this
+/// library. The test profile (opt-level 1) shares generic instances with the crates
+/// downstream, so the test binaries (`generated_batch`, `no_alloc`) compile the small
+/// dispatching wrappers and call these bodies and copies, instead of compiling them again
+/// each (they took about 20 CPU-minutes each).
+fn batch_instances(s: &str) -> String {
+    format!(
+        r#"
+/// Instantiates the batch functions at the widths the tests use (see tests/build.rs).
+#[doc(hidden)]
+pub fn batch_instances() {{
+    fn keep<const B: usize>() {{
+        use std::hint::black_box;
+        black_box::<fn(&Robot, &[_; B], &[_; B], &[_; B]) -> [_; B]>(Robot::inverse_dynamics_batch::<B>);
+        black_box::<fn(&Robot, &[_; B], &[_; B], &[_; B]) -> [_; B]>(Robot::forward_dynamics_batch::<B>);
+        black_box::<fn(&Robot, &[_; B]) -> [_; B]>(Robot::mass_matrix_batch::<B>);
+        black_box::<fn(&Robot, &[_; B]) -> [_; B]>(Robot::gravity_batch::<B>);
+    }}
+    keep::<4>();
+    keep::<{{ 64 / ::core::mem::size_of::<{s}>() }}>();
+}}
+"#
     )
 }
 

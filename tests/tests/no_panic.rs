@@ -554,23 +554,37 @@ mod release {
             });
             // The batch bodies the dispatch leaves alone (small functions) are `extern "C"`
             // parts too, `X_batch_out_of_line`, out of line (see `batch::out_of_line`), and so
-            // are the dispatched ones' where no copy runs (`X_batch_portable`, compiled for
-            // AVX-512 with `-C target-cpu`; inlined into the wrapper otherwise).
+            // are the dispatched functions' where no copy runs (`X_portable`: a batch
+            // function's everywhere, a single-state one's compiled for a target without AVX2,
+            // as this test binary is unless built with `-C target-cpu`).
             let out_of_line = f.named(|n| {
                 n.contains("::generated::")
-                    && (n.contains("_batch_out_of_line") || n.contains("_batch_portable"))
+                    && (n.contains("_batch_out_of_line") || n.contains("_portable"))
             });
             assert!(
                 !out_of_line.is_empty(),
                 "no `_batch_out_of_line` body found in the test binary"
             );
+            let single = out_of_line
+                .iter()
+                .filter(|&&c| !f.funcs[c].2.contains("_batch_"))
+                .count();
+            if !cfg!(any(
+                target_feature = "avx512f",
+                all(target_feature = "avx2", target_feature = "fma")
+            )) {
+                assert!(
+                    single >= 100,
+                    "only {single} out-of-line single-state `_portable` bodies found"
+                );
+            }
             for &c in &out_of_line {
                 if let Some(path) = f.panic_path(&[c]) {
-                    panic!("a panic path in a batch body: {}", path.join(" -> "));
+                    panic!("a panic path in an out-of-line body: {}", path.join(" -> "));
                 }
             }
             eprintln!(
-                "{} out-of-line batch bodies, no panic path",
+                "{} out-of-line bodies ({single} of single-state functions), no panic path",
                 out_of_line.len()
             );
             if cfg!(target_feature = "avx512f") {

@@ -20,7 +20,7 @@
 //!         #[cfg(not(all(target_feature = "avx2", target_feature = "fma")))]
 //!         { if Self::has_avx2() { return unsafe { self.f_avx2(args) }; } }
 //!     }
-//!     self.f_body::<false>(args)
+//!     self.f_portable(args)
 //! }
 //! #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
 //! #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
@@ -29,8 +29,19 @@
 //!           not(all(target_feature = "avx2", target_feature = "fma"))))]
 //! #[target_feature(enable = "avx2,fma")]
 //! unsafe extern "C" fn f_avx2(&self, args) -> R { self.f_body::<true>(args) }
+//! #[cfg(the AVX2 copy's cfg)] #[inline(never)]
+//! extern "C" fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
+//! #[cfg(not(the AVX2 copy's cfg))] #[inline(always)]
+//! fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
 //! #[inline(always)] fn f_body<const WIDE: bool>(&self, args) -> R { the body }
 //! ```
+//!
+//! `f_portable` is what a CPU without AVX2 runs. Compiled for the default x86-64 target it is
+//! out of line (and `extern "C"`, see below), so that the wrapper is a few instructions: a
+//! crate that calls `f` from another crate compiles those and calls the copies, instead of
+//! compiling the whole body again (the project's test binaries did, once for each). Where the
+//! crate is compiled with AVX2 and FMA or for another architecture, `f_portable` is the code
+//! that runs, and it is inlined into the wrapper as the body was before there was a dispatch.
 //!
 //! `f_body` is inlined into all three, so it is compiled once for the crate's target, once for
 //! AVX-512 and once for AVX2: in the last two `Self::mul_add_with::<true>` is `f64::mul_add`,
@@ -70,8 +81,7 @@
 //! `X_batch` is dispatched exactly when `X` is, so that a state's result is `X`'s bit for bit
 //! on every CPU. A batch function comes `#[inline(never)]` (it holds the whole `B`-wide body
 //! wherever it is not dispatched); its dispatching wrapper is `#[inline]`, and where no copy
-//! runs it calls `f_portable::<B>`, the body inlined under the `cfg` above and an
-//! out-of-line `extern "C"` function outside it (`-C target-cpu` with AVX-512), so that a
+//! runs it calls `f_portable::<B>`, out of line and `extern "C"` on every target, so that a
 //! caller knows it cannot unwind (as [`super::batch::out_of_line`] does for the batch
 //! functions the dispatch leaves alone). A large batch body ([`super::zmm::DOC_MARK`]) gets
 //! bodies of its own in the AVX-512 and AVX2 copies, its lane arithmetic written as those
@@ -107,8 +117,14 @@ fn avx2_cond() -> TokenStream {
 
 /// The `cfg` of the AVX2 copies and of their CPU check: the dispatch's and [`avx2_cond`].
 fn avx2_cfg() -> TokenStream {
+    let cond = avx2_copy_cond();
+    quote!(#[cfg(#cond)])
+}
+
+/// Its predicate.
+fn avx2_copy_cond() -> TokenStream {
     let avx2 = avx2_cond();
-    quote!(#[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f"), #avx2))])
+    quote!(all(target_arch = "x86_64", not(target_feature = "avx512f"), #avx2))
 }
 
 /// The two copies whose batch bodies can run on the runtime's tokens ([`super::zmm`]).
@@ -581,39 +597,44 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         quote!(, #generics)
     };
     let vis = public.then(|| quote!(pub));
-    // Where no copy runs: the body compiled for the target. A batch function's (which holds
-    // a `B`-wide body, out of line) is `X_portable`: inlined into the wrapper where the
-    // dispatch exists, and an out-of-line `extern "C"` function where it does not (`-C
-    // target-cpu` with AVX-512), so that a caller knows it cannot unwind without seeing it
-    // (see `batch::out_of_line`).
+    // Where no copy runs: the body compiled for the target, `X_portable`. Where the dispatch
+    // exists and the target lacks AVX2 or FMA (the default x86-64 target), only a CPU without
+    // AVX2 runs it: it is out of line there, so that a crate calling `X` from another crate
+    // (the test binaries, a user's crate over a generated library) compiles the small wrapper
+    // and not the whole body again. A batch function's (which holds a `B`-wide body) is out
+    // of line everywhere. Out of line means `extern "C"`, so that a caller knows it cannot
+    // unwind without seeing it (see `batch::out_of_line`). Elsewhere (`-C target-cpu` with
+    // AVX2 and FMA or AVX-512, other architectures) a single-state body is inlined into the
+    // wrapper, as it was before there was a dispatch.
+    let portable = format_ident!("{}_portable", name);
     let portable_body = quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*));
-    let (fallback, portable) = if out_of_line {
-        let portable = format_ident!("{}_portable", name);
-        let cond = dispatch_cond();
-        let doc = format!(
-            " [`Self::{name}`] where no copy runs: the body compiled for the target, \
-             out of line and `extern \"C\"` where the target has AVX-512."
-        );
-        (
-            quote!(self.#portable #fast_turbofish (#(#arg_names),*)),
-            quote! {
-                #[doc = #doc]
-                #[cfg(#cond)]
-                #[inline(always)]
-                fn #portable #fast_generics (#args) #ret {
-                    #portable_body
-                }
-                #[doc = #doc]
-                #[cfg(not(#cond))]
-                #[inline(never)]
-                #[allow(improper_ctypes_definitions)]
-                extern "C" fn #portable #fast_generics (#args) #ret {
-                    #portable_body
-                }
-            },
-        )
+    let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
+    let doc = format!(" [`Self::{name}`] where no copy runs: the body compiled for the target.");
+    let out_of_line_portable = quote! {
+        #[inline(never)]
+        #[allow(improper_ctypes_definitions)]
+        extern "C" fn #portable #fast_generics (#args) #ret {
+            #portable_body
+        }
+    };
+    let portable = if out_of_line {
+        quote! {
+            #[doc = #doc]
+            #out_of_line_portable
+        }
     } else {
-        (portable_body, quote!())
+        let cond = avx2_copy_cond();
+        quote! {
+            #[doc = #doc]
+            #[cfg(#cond)]
+            #out_of_line_portable
+            #[doc = #doc]
+            #[cfg(not(#cond))]
+            #[inline(always)]
+            fn #portable #fast_generics (#args) #ret {
+                #portable_body
+            }
+        }
     };
     // The call of the body in a copy for `isa`, and the item of its body of instructions
     // where it has one. For `B` that do not fill its registers, the vectoriser's body: the
@@ -1553,9 +1574,10 @@ mod tests {
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
         assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
         assert!(!batch.contains("Self::mul_add_lanes("));
-        // Its wrapper is inlined; where no copy runs it calls `_portable`, inlined where the
-        // dispatch exists and an out-of-line `extern "C"` function elsewhere. A single-state
-        // function stays `#[inline]`.
+        // Its wrapper is inlined; where no copy runs it calls `_portable`, an out-of-line
+        // `extern "C"` function everywhere. A single-state function stays `#[inline]`; its
+        // `_portable` is out of line where the dispatch exists and the target has no AVX2
+        // (the default x86-64 target), and inlined elsewhere.
         let before = &std[..std
             .find("pub fn inverse_dynamics_batch<")
             .expect("a batch wrapper")];
@@ -1567,7 +1589,7 @@ mod tests {
         assert!(std.contains("self.inverse_dynamics_batch_portable::<B>(q, qd, qdd)"));
         assert_eq!(
             std.matches("fn inverse_dynamics_batch_portable<").count(),
-            2
+            1
         );
         let k = std
             .find("extern \"C\" fn inverse_dynamics_batch_portable<")
@@ -1575,7 +1597,7 @@ mod tests {
         let attrs: String = std[k - 300..k].split_whitespace().collect();
         assert!(
             attrs.ends_with(
-                r#"#[cfg(not(all(target_arch="x86_64",not(target_feature="avx512f"))))]#[inline(never)]#[allow(improper_ctypes_definitions)]"#
+                r#"wherenocopyruns:thebodycompiledforthetarget.#[inline(never)]#[allow(improper_ctypes_definitions)]"#
             ),
             "{attrs}"
         );
@@ -1585,6 +1607,23 @@ mod tests {
             attrs.contains("#[inline]\n") && !attrs.contains("never"),
             "{attrs}"
         );
+        assert!(std.contains("self.inverse_dynamics_portable(q, qd, qdd)"));
+        assert_eq!(std.matches("fn inverse_dynamics_portable(").count(), 2);
+        let k = std
+            .find("extern \"C\" fn inverse_dynamics_portable(")
+            .expect("the out-of-line fallback");
+        let attrs: String = std[k - 300..k].split_whitespace().collect();
+        assert!(
+            attrs.ends_with(
+                r#"#[cfg(all(target_arch="x86_64",not(target_feature="avx512f"),not(all(target_feature="avx2",target_feature="fma"))))]#[inline(never)]#[allow(improper_ctypes_definitions)]"#
+            ),
+            "{attrs}"
+        );
+        let k = std
+            .rfind("fn inverse_dynamics_portable(")
+            .expect("the inlined fallback");
+        let attrs: String = std[k - 200..k].split_whitespace().collect();
+        assert!(attrs.ends_with(")))))]#[inline(always)]"), "{attrs}");
         // A short body with several angles is dispatched (the UR5's gravity).
         assert!(std.contains("fn gravity_avx512("));
         // So is a private helper, and its wrapper stays private: `mass_matrix_factor`, which
