@@ -1591,14 +1591,17 @@ mod tests {
             std.matches("fn inverse_dynamics_batch_portable<").count(),
             1
         );
+        // The attributes before the item at `k`, without whitespace.
+        let attrs_before = |k: usize| -> String { std[k - 300..k].split_whitespace().collect() };
+        let out_of_line = r#"#[inline(never)]#[allow(improper_ctypes_definitions)]"#;
         let k = std
             .find("extern \"C\" fn inverse_dynamics_batch_portable<")
             .expect("the out-of-line fallback");
-        let attrs: String = std[k - 300..k].split_whitespace().collect();
+        let attrs = attrs_before(k);
         assert!(
-            attrs.ends_with(
-                r#"wherenocopyruns:thebodycompiledforthetarget.#[inline(never)]#[allow(improper_ctypes_definitions)]"#
-            ),
+            attrs.ends_with(&format!(
+                "wherenocopyruns:thebodycompiledforthetarget.{out_of_line}"
+            )),
             "{attrs}"
         );
         let before = &std[..std.find("pub fn inverse_dynamics(").expect("a function")];
@@ -1609,21 +1612,23 @@ mod tests {
         );
         assert!(std.contains("self.inverse_dynamics_portable(q, qd, qdd)"));
         assert_eq!(std.matches("fn inverse_dynamics_portable(").count(), 2);
+        let avx2_copy = r#"all(target_arch="x86_64",not(target_feature="avx512f"),not(all(target_feature="avx2",target_feature="fma")))"#;
         let k = std
             .find("extern \"C\" fn inverse_dynamics_portable(")
             .expect("the out-of-line fallback");
-        let attrs: String = std[k - 300..k].split_whitespace().collect();
+        let attrs = attrs_before(k);
         assert!(
-            attrs.ends_with(
-                r#"#[cfg(all(target_arch="x86_64",not(target_feature="avx512f"),not(all(target_feature="avx2",target_feature="fma"))))]#[inline(never)]#[allow(improper_ctypes_definitions)]"#
-            ),
+            attrs.ends_with(&format!("#[cfg({avx2_copy})]{out_of_line}")),
             "{attrs}"
         );
         let k = std
             .rfind("fn inverse_dynamics_portable(")
             .expect("the inlined fallback");
-        let attrs: String = std[k - 200..k].split_whitespace().collect();
-        assert!(attrs.ends_with(")))))]#[inline(always)]"), "{attrs}");
+        let attrs = attrs_before(k);
+        assert!(
+            attrs.ends_with(&format!("#[cfg(not({avx2_copy}))]#[inline(always)]")),
+            "{attrs}"
+        );
         // A short body with several angles is dispatched (the UR5's gravity).
         assert!(std.contains("fn gravity_avx512("));
         // So is a private helper, and its wrapper stays private: `mass_matrix_factor`, which
