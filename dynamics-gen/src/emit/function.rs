@@ -519,16 +519,9 @@ impl FunctionBody<'_> {
         // written inline into the batch; when sines and cosines are their only users, they
         // get no `let` of their own.
         let batch: Vec<usize> = (0..trig.len())
-            .filter(|&t| of_one_input(g, trig[t].0, 3))
+            .filter(|&t| of_one_input(g, trig[t].0, MAX_ANGLE_DEPTH))
             .collect();
-        let mut inline_only = vec![false; g.len()];
-        for &t in &batch {
-            let (arg, sin, cos) = trig[t];
-            let trig_uses = u32::from(sin.is_some()) + u32::from(cos.is_some());
-            if !matches!(g.node(arg), Node::Input(_)) && uses[arg.index()] == trig_uses {
-                inline_only[arg.index()] = true;
-            }
-        }
+        let inline_only = angles_inline(g, &live, &uses, &trig, &batch);
         if !batch.is_empty() {
             let mut args = Vec::new();
             let mut s_pats = Vec::new();
@@ -1208,25 +1201,76 @@ impl FunctionBody<'_> {
     }
 }
 
-/// Whether `id` is an input, or sums, differences, products and negations of one input and
-/// constants at most `depth` operations deep (`q_i`, `q_i + b`, `a·q_i + b`, …).
+/// The deepest angle the sine and cosine kernel computes inline: a run of parallel joints' sum
+/// (`q_i + q_j + …`, each with its offset) of up to 8 joints, or a mimic joint's `a·q_i + b`.
+const MAX_ANGLE_DEPTH: u32 = 16;
+
+/// The nodes written only inline into the kernel's angles (`batch`: the indices in `trig` of
+/// the angles it takes): the angles and their parts (`q_i + b`; the partial sums of a run of
+/// parallel joints) whose every use is by a kernel's sine or cosine or by another such node.
+/// They get no `let` of their own, which nothing would read.
+fn angles_inline(
+    g: &ExprGraph,
+    live: &[bool],
+    uses: &[u32],
+    trig: &[(ExprId, Option<ExprId>, Option<ExprId>)],
+    batch: &[usize],
+) -> Vec<bool> {
+    let mut part = vec![false; g.len()];
+    let mut stack: Vec<ExprId> = batch.iter().map(|&t| trig[t].0).collect();
+    while let Some(id) = stack.pop() {
+        if !part[id.index()] && !matches!(g.node(id), Node::Input(_) | Node::Const(_)) {
+            part[id.index()] = true;
+            stack.extend(g.node(id).operands());
+        }
+    }
+    let mut kernel = vec![false; g.len()];
+    for &t in batch {
+        kernel[trig[t].0.index()] = true;
+    }
+    // Uses by the kernel's sines and cosines and by inline-only nodes, users first.
+    let mut inner = vec![0u32; g.len()];
+    let mut inline_only = vec![false; g.len()];
+    for k in (0..g.len()).rev() {
+        if !live[k] {
+            continue;
+        }
+        match *g.node(ExprId(k as u32)) {
+            Node::Sin(a) | Node::Cos(a) if kernel[a.index()] => inner[a.index()] += 1,
+            ref node if part[k] && uses[k] == inner[k] => {
+                inline_only[k] = true;
+                for o in node.operands() {
+                    inner[o.index()] += 1;
+                }
+            }
+            _ => {}
+        }
+    }
+    inline_only
+}
+
+/// Whether `id` reads inputs of one group (one argument) through sums, differences, products
+/// and negations with constants, at most `depth` operations deep: `q_i`, `q_i + b`, `a·q_i +
+/// b`, a run of parallel joints' `q_i + q_j − q_k` (see `expand::kinematics`).
 fn of_one_input(g: &ExprGraph, id: ExprId, depth: u32) -> bool {
-    fn input_of(g: &ExprGraph, id: ExprId, depth: u32) -> Option<Option<Input>> {
-        // Some(None): constants only; Some(Some(x)): constants and the input x.
+    fn group_of(g: &ExprGraph, id: ExprId, depth: u32) -> Option<Option<u8>> {
+        // Some(None): constants only; Some(Some(k)): constants and inputs of group k.
         match *g.node(id) {
             Node::Const(_) => Some(None),
-            Node::Input(x) => Some(Some(x)),
-            Node::Neg(a) if depth > 0 => input_of(g, a, depth - 1),
+            Node::Input(x) => Some(Some(x.group)),
+            Node::Neg(a) if depth > 0 => group_of(g, a, depth - 1),
             Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) if depth > 0 => {
-                match (input_of(g, a, depth - 1)?, input_of(g, b, depth - 1)?) {
+                match (group_of(g, a, depth - 1)?, group_of(g, b, depth - 1)?) {
                     (Some(x), Some(y)) if x != y => None,
+                    // A product of two inputs is no angle of a joint.
+                    (Some(_), Some(_)) if matches!(g.node(id), Node::Mul(..)) => None,
                     (x, y) => Some(x.or(y)),
                 }
             }
             _ => None,
         }
     }
-    matches!(input_of(g, id, depth), Some(Some(_)))
+    matches!(group_of(g, id, depth), Some(Some(_)))
 }
 
 /// The private `mul_add(a, b, c) = a·b + c` helper of a generated `std` impl, which every

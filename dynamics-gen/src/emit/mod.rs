@@ -20,7 +20,7 @@ pub mod trig;
 pub mod zmm;
 
 use crate::error::Error;
-use crate::expand::kinematics::{expand_kinematics, Kinematics};
+use crate::expand::kinematics::{expand_kinematics_with, Kinematics};
 use crate::expand::task_space::{expand_task_space, TaskSpace, F_TIP};
 use crate::expand::{self, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use crate::options::{upper_camel, Options, Scalar};
@@ -263,7 +263,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         let rate = friction::friction_rate_function(&robot, options, &nalgebra);
         quote!(#friction_fn #rate)
     };
-    let kinematics = expand_kinematics(&robot);
+    // The variants take the joints' sines and cosines from the caller: no run's sums.
+    let kinematics = expand_kinematics_with(&robot, !options.sin_cos_variants);
     let task_space = expand_task_space(&dynamics, &kinematics);
     let extras = dynamics_extras(
         &dynamics,

@@ -200,7 +200,7 @@ pub fn quantities(
             .map_err(|e| {
                 refuse(
                     &e.to_string(),
-                    "the closed form exists for revolute and prismatic joints and mimic multipliers ±1",
+                    "the closed form exists for revolute and prismatic joints and mimic multipliers that are whole numbers up to 8 (±1, 2, …)",
                 )
             })
     };

@@ -39,7 +39,7 @@ pub enum PolyError {
     /// A division or square root (only forward dynamics and a floating base's quaternion
     /// have them).
     NotPolynomial(&'static str),
-    /// `sin`/`cos` of something other than `±θ_i + constant`.
+    /// `sin`/`cos` of something other than `Σ a_j θ_j + constant` with whole `a_j`, `|a_j| ≤ 8`.
     Argument,
     /// More terms than the limit in one expression.
     TooLarge(usize),
@@ -53,7 +53,7 @@ impl std::fmt::Display for PolyError {
             }
             PolyError::Argument => write!(
                 f,
-                "a sine or cosine of something other than ±θ_i + constant (a mimic joint with a multiplier other than ±1)"
+                "a sine or cosine of something other than a sum of joint angles times whole numbers up to 8, plus a constant (a mimic joint with a multiplier such as 0.5)"
             ),
             PolyError::TooLarge(n) => write!(f, "an expression has more than {n} terms"),
         }
@@ -156,20 +156,40 @@ impl Poly {
             .sum()
     }
 
-    /// The polynomial as `a·θ + b` in one position variable: `(index, a, b)` with `a = ±1`.
-    fn as_angle(&self) -> Option<(u16, f64, f64)> {
-        let mut var = None;
+    /// The polynomial as `Σ a_j·θ_j + b` in position variables with whole coefficients `a_j`
+    /// (`±1` for a joint, the sums of a run of parallel joints, `2` where a mimic joint
+    /// turns with its leader): `([(index, a_j)], b)`.
+    fn as_angle(&self) -> Option<(Vec<(u16, i32)>, f64)> {
+        let mut vars = Vec::new();
         let mut b = 0.0;
         for (m, &c) in &self.terms {
             match m.as_slice() {
                 [] => b = c,
-                [(Var::Q(i), 1)] if var.is_none() && (c == 1.0 || c == -1.0) => {
-                    var = Some((*i, c));
+                [(Var::Q(i), 1)] if c.fract() == 0.0 && c.abs() <= 8.0 => {
+                    vars.push((*i, c as i32));
                 }
                 _ => return None,
             }
         }
-        var.map(|(i, a)| (i, a, b))
+        (!vars.is_empty()).then_some((vars, b))
+    }
+
+    /// `(sin x, cos x)` of the angle `x = Σ a_j·θ_j + b` ([`Self::as_angle`]) by the angle
+    /// addition formulas, in `sin θ_j`, `cos θ_j`: `sin(x ± θ) = sin x cos θ ± cos x sin θ`,
+    /// `cos(x ± θ) = cos x cos θ ∓ sin x sin θ`, from `(sin b, cos b)`.
+    fn sin_cos_of_angle(vars: &[(u16, i32)], b: f64) -> Result<(Poly, Poly), PolyError> {
+        let (sb, cb) = exact_sin_cos(b);
+        let (mut sin, mut cos) = (Poly::constant(sb), Poly::constant(cb));
+        for &(j, a) in vars {
+            let (sj, cj) = (Poly::var(Var::Sin(j)), Poly::var(Var::Cos(j)));
+            let sign = f64::from(a.signum());
+            for _ in 0..a.unsigned_abs() {
+                let s = sin.mul(&cj)?.combine(1.0, &cos.mul(&sj)?, sign);
+                let c = cos.mul(&cj)?.combine(1.0, &sin.mul(&sj)?, -sign);
+                (sin, cos) = (s, c);
+            }
+        }
+        Ok((sin, cos))
     }
 }
 
@@ -257,14 +277,12 @@ pub fn from_graph(
             Node::Div(..) => return Err(PolyError::NotPolynomial("division")),
             Node::Sqrt(..) => return Err(PolyError::NotPolynomial("square root")),
             Node::Sin(a) | Node::Cos(a) => {
-                let (j, s, b) = get(a).as_angle().ok_or(PolyError::Argument)?;
-                // sin(sθ + b) = s sin θ cos b + cos θ sin b; cos(sθ + b) = cos θ cos b − s sin θ sin b.
-                let (sin, cos) = (Poly::var(Var::Sin(j)), Poly::var(Var::Cos(j)));
-                let (sb, cb) = exact_sin_cos(b);
+                let (vars, b) = get(a).as_angle().ok_or(PolyError::Argument)?;
+                let (sin, cos) = Poly::sin_cos_of_angle(&vars, b)?;
                 if matches!(node, Node::Sin(_)) {
-                    sin.combine(s * cb, &cos, sb)
+                    sin
                 } else {
-                    cos.combine(cb, &sin, -s * sb)
+                    cos
                 }
             }
         };

@@ -167,10 +167,20 @@ fn rows_of(m: &Matrix4<f64>) -> ([[f64; 3]; 3], [f64; 3]) {
 }
 
 /// `T_{b,J_i}(θ)` for every joint, from the base outwards (see the module docs).
-fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId]) -> Vec<Pose> {
+///
+/// A run of parallel revolute joints (`C_i`'s rotation maps z to ±z exactly: the UR arms'
+/// shoulder, elbow and first wrist joint, a leg's hip pitch, knee and ankle pitch) turns about
+/// one axis, so that `Rot_z(θ_λ) C_i⁻¹ = C_i⁻¹ Rot_z(±θ_λ)` and the run's rotations are
+/// `R_{b,J_i} = A_i Rot_z(φ_i)` with `A_i` the rotation where the run starts (times the
+/// constant `C⁻¹`s) and `φ_i = ±θ_λ … + θ_i` the sum of the run's angles: each rotation one
+/// step from `A_i` (the sines and cosines of the sums come from the same vectorised kernel),
+/// not a chain of products one joint after another. The same operations, a shorter path.
+fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId], runs: bool) -> Vec<Pose> {
     let motions = joint_motions(g, frames, q);
     let base = identity(g);
     let mut poses: Vec<Pose> = Vec::with_capacity(motions.len());
+    // `(A_i, φ_i)` with `R_{b,J_i} = A_i Rot_z(φ_i)`, for the joints a run can go on from.
+    let mut turns: Vec<Option<(M3, ExprId)>> = Vec::with_capacity(motions.len());
     for m in &motions {
         let f = m.frame;
         let parent = f.parent.map_or(base, |p| poses[p]);
@@ -181,21 +191,61 @@ fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId]) -> Vec<Pos
         let a = mul_const(g, &parent.r, &rt);
         let shift = apply_const(g, &parent.r, minus_rt_p);
         let mut p = g.add3(parent.p, shift);
-        let r = match f.kind {
-            JointKind::Revolute => times_rot_z(g, &a, m.sin, m.cos, false),
+        // The run this joint goes on with: A_λ C_i⁻¹ and ±φ_λ.
+        let run = match (f.parent.and_then(|k| turns[k]), z_sign(&f.r)) {
+            (Some((a, phi)), Some(sign)) if runs => {
+                let phi = if sign < 0.0 { g.neg(phi) } else { phi };
+                Some((mul_const(g, &a, &rt), phi))
+            }
+            _ => None,
+        };
+        let (r, turn) = match f.kind {
+            JointKind::Revolute => match run {
+                Some((a, phi)) => {
+                    let phi = g.add(phi, m.q);
+                    let (s, c) = (g.sin(phi), g.cos(phi));
+                    (times_rot_z(g, &a, s, c, false), Some((a, phi)))
+                }
+                None => (times_rot_z(g, &a, m.sin, m.cos, false), Some((a, m.q))),
+            },
             JointKind::Prismatic => {
                 let d = g.scale3(m.q, column(&a, 2));
                 p = g.add3(p, d);
-                a
+                (a, run)
             }
         };
         poses.push(Pose { r, p });
+        turns.push(turn);
     }
     poses
 }
 
-/// Expands the pose and Jacobians of the end effector and of every named frame of `robot`.
+/// The identity rotation.
+const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// `a b` of two constant rotations.
+fn times(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+/// `±1` when the rotation `r` maps z to ±z exactly (its third row and column are `(0, 0, ±1)`),
+/// so that `Rot_z(θ) rᵀ = rᵀ Rot_z(±θ)`.
+fn z_sign(r: &[[f64; 3]; 3]) -> Option<f64> {
+    let axis = r[0][2] == 0.0 && r[1][2] == 0.0 && r[2][0] == 0.0 && r[2][1] == 0.0;
+    (axis && r[2][2].abs() == 1.0).then_some(r[2][2])
+}
+
+/// Expands the pose and Jacobians of the end effector and of every named frame of `robot`,
+/// runs of parallel joints taking the sines and cosines of their sums ([`joint_poses`]).
 pub fn expand_kinematics(robot: &Robot) -> Kinematics {
+    expand_kinematics_with(robot, true)
+}
+
+/// [`expand_kinematics`], with `runs: false` every rotation one joint after the other, so that
+/// the sines and cosines taken are the joint angles' own (`q_i + offset`): the form of the
+/// `*_from_sin_cos` variants, which then need no sine of their own (a run's sums would be
+/// computed from `q` in them).
+pub fn expand_kinematics_with(robot: &Robot, runs: bool) -> Kinematics {
     let mut frames = joint_frames(robot);
     // Mimic joints: the inputs are the independent coordinates (see [`super::mimic`]).
     mimic::offsets(&mut frames, robot);
@@ -209,7 +259,7 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         .map(|i| g.input(input(Q, oq + i)))
         .collect();
     let q = coupling.positions(&mut g, &x);
-    let poses = joint_poses(&mut g, &frames, &q);
+    let poses = joint_poses(&mut g, &frames, &q, runs);
     // The base pose T_{0b}: from q on a floating base.
     let base = floating.then(|| {
         let r = base_rotation(&mut g);
@@ -236,6 +286,7 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         base,
         &robot.end_effector,
         nv,
+        runs,
     );
     // J̇ by the twists the columns move with, on the physical joints' rates.
     let nu: Vec<ExprId> = (0..ov + robot.n_coordinates())
@@ -251,7 +302,7 @@ pub fn expand_kinematics(robot: &Robot) -> Kinematics {
         .frames
         .iter()
         .map(|f| {
-            let k = frame_kinematics(&mut g, robot, &frames, &q, &poses, base, f, nv);
+            let k = frame_kinematics(&mut g, robot, &frames, &q, &poses, base, f, nv, runs);
             coupled(&mut g, &k)
         })
         .collect();
@@ -379,7 +430,7 @@ pub(crate) fn potential_energy_of(
     frames: &JointFrames,
     q: &[ExprId],
 ) -> ExprId {
-    let poses = joint_poses(g, frames, q);
+    let poses = joint_poses(g, frames, q, true);
     let base = robot.base.floating.then(|| {
         let r = base_rotation(g);
         let p: V3 = std::array::from_fn(|k| g.input(input(Q, k)));
@@ -461,6 +512,7 @@ fn frame_kinematics(
     base: Option<Pose>,
     frame: &Frame,
     nv: usize,
+    runs: bool,
 ) -> FrameKinematics {
     let ov = nv - robot.dof();
     // K_f = T_{J_k,f}: the frame in its link's joint frame (in {0} for the base).
@@ -485,6 +537,10 @@ fn frame_kinematics(
         p: g.const3(xp),
     };
     let motions = joint_motions(g, frames, q);
+    // A run of parallel revolute joints (as in `joint_poses`): `X_r = B Rot_z(−ψ) D` with `D`
+    // the product of the run's constant rotations, each mapping z to ±z, so that `D
+    // Rot_z(−θ) = Rot_z(∓θ) D` and `ψ` sums the run's angles; `(B, ψ, D)` while in a run.
+    let mut run: Option<(M3, ExprId, [[f64; 3]; 3])> = None;
     for i in robot.frame_path(frame).into_iter().rev() {
         let m = &motions[i];
         let z = column(&x.r, 2);
@@ -494,17 +550,34 @@ fn frame_kinematics(
         };
         set_column(&mut j_b, nv, ov + i, (w, v));
         // X · Rot_z(−θ): columns (c a₀ − s a₁, s a₀ + c a₁, a₂); X · Trans_z(−θ): p − θ a₂.
-        match m.frame.kind {
-            JointKind::Revolute => x.r = times_rot_z(g, &x.r, m.sin, m.cos, true),
-            JointKind::Prismatic => {
+        match (m.frame.kind, run) {
+            (JointKind::Revolute, Some((b, psi, d))) => {
+                let theta = if d[2][2] < 0.0 { g.neg(m.q) } else { m.q };
+                let psi = g.add(psi, theta);
+                let (s, c) = (g.sin(psi), g.cos(psi));
+                let turned = times_rot_z(g, &b, s, c, true);
+                x.r = mul_const(g, &turned, &d);
+                run = Some((b, psi, d));
+            }
+            (JointKind::Revolute, None) => {
+                let b = x.r;
+                x.r = times_rot_z(g, &x.r, m.sin, m.cos, true);
+                run = Some((b, m.q, IDENTITY));
+            }
+            (JointKind::Prismatic, _) => {
                 let d = g.scale3(m.q, z);
                 x.p = g.sub3(x.p, d);
+                run = None;
             }
         }
         // X · C_j.
         let shift = apply_const(g, &x.r, m.frame.p);
         x.p = g.add3(x.p, shift);
         x.r = mul_const(g, &x.r, &m.frame.r);
+        run = match (run, z_sign(&m.frame.r)) {
+            (Some((b, psi, d)), Some(_)) if runs => Some((b, psi, times(&d, &m.frame.r))),
+            _ => None,
+        };
     }
     if ov > 0 {
         // X = T_{f,b}: the base columns are [Ad_X].

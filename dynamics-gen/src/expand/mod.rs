@@ -801,6 +801,9 @@ mod tree_tests;
 mod mimic_tests;
 
 #[cfg(test)]
+mod kinematics_tests;
+
+#[cfg(test)]
 mod derivatives_tests;
 
 #[cfg(test)]
