@@ -248,3 +248,64 @@ fn equations_of_runs_expand_the_sums() {
         close("M", &got, &row_major(&mass));
     }
 }
+
+/// A mimic joint with a whole multiplier has a closed form (its sine expanded by angle
+/// addition, `sin 2θ = 2 sin θ cos θ`), equal to the reference; a multiplier of 0.5 is refused
+/// with what to do.
+#[test]
+fn equations_of_whole_and_fractional_mimic_multipliers() {
+    use crate::equations::{poly::Var, quantities, Select};
+    let select = Select {
+        mass_matrix: true,
+        coriolis: false,
+        coriolis_matrix: false,
+        gravity: true,
+    };
+    let with = |multiplier: &str| {
+        let mimic = format!(r#"<mimic joint="j2" multiplier="{multiplier}" offset="0.2"/>"#);
+        arm(&[
+            (
+                "j1",
+                "revolute",
+                r#"xyz="0 0 0.1" rpy="0 0 0""#,
+                "0 0 1",
+                "",
+            ),
+            ("j2", "revolute", SHOULDER, "0 0 1", ""),
+            (
+                "j3",
+                "revolute",
+                r#"xyz="0.3 0 0" rpy="0 1.5707963267948966 0""#,
+                "0 0 1",
+                &mimic,
+            ),
+        ])
+    };
+    let robot = with("2");
+    let out = quantities(&robot, false, select, &[]).expect("closed form");
+    let g = out.iter().find(|q| q.text == "g").expect("g");
+    let mut rng = Rng::new(0x2a);
+    for _ in 0..5 {
+        let q: Vec<f64> = (0..robot.n_coordinates())
+            .map(|_| rng.uniform(-3.0, 3.0))
+            .collect();
+        let got: Vec<f64> = g
+            .entries
+            .iter()
+            .map(|p| {
+                p.eval(&|v| match v {
+                    Var::Sin(i) => q[i as usize].sin(),
+                    Var::Cos(i) => q[i as usize].cos(),
+                    other => panic!("{other:?} in g"),
+                })
+            })
+            .collect();
+        let want = dynamics_reference::gravity_forces(&robot, &q, &robot.gravity);
+        close("g", &got, want.as_slice());
+    }
+    let err = quantities(&with("0.5"), false, select, &[])
+        .expect_err("a multiplier of 0.5 has no closed form in sines of θ")
+        .to_string();
+    assert!(err.contains("multiplier such as 0.5"), "{err}");
+    assert!(err.contains("whole numbers up to 8"), "{err}");
+}
