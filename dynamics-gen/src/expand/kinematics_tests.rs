@@ -61,17 +61,11 @@ const MIMIC: &str = r#"<mimic joint="j2" multiplier="1" offset="0.3"/>"#;
 
 /// An arm of 9 joints: a base yaw, then a run about one axis (shoulder, elbow, a joint about
 /// the opposite direction, a prismatic joint along the axis, a wrist joint turned about it by
-/// a constant 0.7 rad, a mimic of the shoulder), then two joints about x (the second turned
-/// by π about x, so its axis is −x in the first's frame).
+/// a constant 0.7 rad, a mimic of the shoulder), then a run of two joints about another axis
+/// (the second's frame turned by π about x, so that its axis is the first's reversed).
 fn runs_arm() -> Robot {
     arm(&[
-        (
-            "j1",
-            "revolute",
-            r#"xyz="0 0 0.1" rpy="0 0 0""#,
-            "0 0 1",
-            "",
-        ),
+        ("j1", "revolute", YAW, "0 0 1", ""),
         ("j2", "revolute", SHOULDER, "0 0 1", ""),
         ("j3", "revolute", ELBOW, "0 0 1", ""),
         ("j4", "revolute", Y, "0 0 -1", ""),
@@ -193,34 +187,18 @@ fn the_ur5_takes_sums_and_the_panda_none() {
         assert!(!has_sum_angle(&k.graph, roots));
     }
 }
-/// The closed-form equations (`dynamics-gen equations`) expand a run's sines and cosines by
-/// the angle addition formulas, a mimic joint's twice-counted leader included: their `M`
-/// and `g` and the Lagrangian route's are the reference's.
-#[test]
-fn equations_of_runs_expand_the_sums() {
+
+/// `M` and `g` of the closed-form equations (`dynamics-gen equations`; with the derivation's
+/// steps, which print the potential energy) at 5 random states against the reference's.
+fn check_closed_form(robot: &Robot) {
     use crate::equations::{poly::Var, quantities, Select};
-    // A run small enough for the closed form: a base yaw, shoulder, elbow, a joint about the
-    // opposite direction and a mimic of the shoulder.
-    let robot = arm(&[
-        (
-            "j1",
-            "revolute",
-            r#"xyz="0 0 0.1" rpy="0 0 0""#,
-            "0 0 1",
-            "",
-        ),
-        ("j2", "revolute", SHOULDER, "0 0 1", ""),
-        ("j3", "revolute", ELBOW, "0 0 1", ""),
-        ("j4", "revolute", Y, "0 0 -1", ""),
-        ("j7", "revolute", Y, "0 0 1", MIMIC),
-    ]);
     let select = Select {
         mass_matrix: true,
         coriolis: false,
         coriolis_matrix: false,
         gravity: true,
     };
-    let out = quantities(&robot, true, select, &[]).expect("closed form");
+    let out = quantities(robot, true, select, &[]).expect("closed form");
     let find = |text: &str| {
         out.iter()
             .find(|q| q.text == text)
@@ -240,13 +218,30 @@ fn equations_of_runs_expand_the_sums() {
                 other => panic!("{other:?} in M or g"),
             })
         };
-        let gravity = dynamics_reference::gravity_forces(&robot, &q, &robot.gravity);
+        let gravity = dynamics_reference::gravity_forces(robot, &q, &robot.gravity);
         let got: Vec<f64> = g.entries.iter().map(at).collect();
         close("g", &got, gravity.as_slice());
-        let mass = dynamics_reference::mass_matrix(&robot, &q);
+        let mass = dynamics_reference::mass_matrix(robot, &q);
         let got: Vec<f64> = m.entries.iter().map(at).collect();
         close("M", &got, &row_major(&mass));
     }
+}
+
+const YAW: &str = r#"xyz="0 0 0.1" rpy="0 0 0""#;
+
+/// The closed form expands a run's sines and cosines by the angle addition formulas, a mimic
+/// joint's twice-counted leader included.
+#[test]
+fn equations_of_runs_expand_the_sums() {
+    // A run small enough for the closed form: a base yaw, shoulder, elbow, a joint about the
+    // opposite direction and a mimic of the shoulder.
+    check_closed_form(&arm(&[
+        ("j1", "revolute", YAW, "0 0 1", ""),
+        ("j2", "revolute", SHOULDER, "0 0 1", ""),
+        ("j3", "revolute", ELBOW, "0 0 1", ""),
+        ("j4", "revolute", Y, "0 0 -1", ""),
+        ("j7", "revolute", Y, "0 0 1", MIMIC),
+    ]));
 }
 
 /// A mimic joint with a whole multiplier has a closed form (its sine expanded by angle
@@ -254,56 +249,18 @@ fn equations_of_runs_expand_the_sums() {
 /// with what to do.
 #[test]
 fn equations_of_whole_and_fractional_mimic_multipliers() {
-    use crate::equations::{poly::Var, quantities, Select};
-    let select = Select {
-        mass_matrix: true,
-        coriolis: false,
-        coriolis_matrix: false,
-        gravity: true,
-    };
     let with = |multiplier: &str| {
         let mimic = format!(r#"<mimic joint="j2" multiplier="{multiplier}" offset="0.2"/>"#);
+        let across = r#"xyz="0.3 0 0" rpy="0 1.5707963267948966 0""#;
         arm(&[
-            (
-                "j1",
-                "revolute",
-                r#"xyz="0 0 0.1" rpy="0 0 0""#,
-                "0 0 1",
-                "",
-            ),
+            ("j1", "revolute", YAW, "0 0 1", ""),
             ("j2", "revolute", SHOULDER, "0 0 1", ""),
-            (
-                "j3",
-                "revolute",
-                r#"xyz="0.3 0 0" rpy="0 1.5707963267948966 0""#,
-                "0 0 1",
-                &mimic,
-            ),
+            ("j3", "revolute", across, "0 0 1", &mimic),
         ])
     };
-    let robot = with("2");
-    let out = quantities(&robot, false, select, &[]).expect("closed form");
-    let g = out.iter().find(|q| q.text == "g").expect("g");
-    let mut rng = Rng::new(0x2a);
-    for _ in 0..5 {
-        let q: Vec<f64> = (0..robot.n_coordinates())
-            .map(|_| rng.uniform(-3.0, 3.0))
-            .collect();
-        let got: Vec<f64> = g
-            .entries
-            .iter()
-            .map(|p| {
-                p.eval(&|v| match v {
-                    Var::Sin(i) => q[i as usize].sin(),
-                    Var::Cos(i) => q[i as usize].cos(),
-                    other => panic!("{other:?} in g"),
-                })
-            })
-            .collect();
-        let want = dynamics_reference::gravity_forces(&robot, &q, &robot.gravity);
-        close("g", &got, want.as_slice());
-    }
-    let err = quantities(&with("0.5"), false, select, &[])
+    check_closed_form(&with("2"));
+    let select = crate::equations::Select::default();
+    let err = crate::equations::quantities(&with("0.5"), false, select, &[])
         .expect_err("a multiplier of 0.5 has no closed form in sines of θ")
         .to_string();
     assert!(err.contains("multiplier such as 0.5"), "{err}");
