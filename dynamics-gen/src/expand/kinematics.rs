@@ -174,7 +174,8 @@ fn rows_of(m: &Matrix4<f64>) -> ([[f64; 3]; 3], [f64; 3]) {
 /// `R_{b,J_i} = A_i Rot_z(φ_i)` with `A_i` the rotation where the run starts (times the
 /// constant `C⁻¹`s) and `φ_i = ±θ_λ … + θ_i` the sum of the run's angles: each rotation one
 /// step from `A_i` (the sines and cosines of the sums come from the same vectorised kernel),
-/// not a chain of products one joint after another. The same operations, a shorter path.
+/// not a chain of products one joint after another: a shorter path, and fewer operations where
+/// `A_i` is sparse (a run that starts from an axis-aligned frame; the UR5's pose 92 → 62).
 fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId], runs: bool) -> Vec<Pose> {
     let motions = joint_motions(g, frames, q);
     let base = identity(g);
