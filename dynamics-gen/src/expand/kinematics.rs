@@ -565,10 +565,10 @@ fn frame_kinematics(
                 x.r = times_rot_z(g, &x.r, m.sin, m.cos, true);
                 run = Some((b, m.q, IDENTITY));
             }
+            // A translation keeps the rotation, and the run goes on (as in `joint_poses`).
             (JointKind::Prismatic, _) => {
                 let d = g.scale3(m.q, z);
                 x.p = g.sub3(x.p, d);
-                run = None;
             }
         }
         // X · C_j.
