@@ -65,11 +65,16 @@ const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_10
 /// called directly (`tests/dispatched_copies.rs`), as a CPU with AVX-512 runs them through the
 /// public functions only for some `B`: each module gets `batch_copies_differ`. The Panda's
 /// forward dynamics (a body of 1,000–2,500 operations: AVX-512 and AVX2 bodies of
-/// instructions beside the vectoriser's) with `B` = 4 and 8. Solo-12's forward dynamics, on
+/// instructions beside the vectoriser's) and inverse dynamics (250–1,000 operations with a
+/// vector result: an AVX2 body of instructions alone, `zmm::AVX2_MIN_OPS`) with `B` = 4 and
+/// 8. Solo-12's forward dynamics, on
 /// lanes in those two copies alone, runs its AVX2 instructions through the public functions
 /// with `B` = 4 (`tests/generated_batch.rs`).
-const BATCH_COPIES: &[(&str, &[&str], &[usize])] =
-    &[("urdf_panda", &["forward_dynamics"], &[4, 8])];
+const BATCH_COPIES: &[(&str, &[&str], &[usize])] = &[(
+    "urdf_panda",
+    &["forward_dynamics", "inverse_dynamics"],
+    &[4, 8],
+)];
 
 /// The cases generated with the `*_from_sin_cos` variants (`sin_cos_variants: true`), each
 /// with `sin_cos_variants_differ` (`tests/sin_cos_variants.rs`): a chain with its derivative

@@ -181,6 +181,13 @@ pub fn batch_functions(
                 } else if dispatched && ops >= super::zmm::MIN_OPS {
                     any_avx512 = true;
                     format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512` and `Avx2`) where `B` is a multiple of a register's lanes ({avx512} and {avx2}).", super::zmm::DOC_MARK)
+                } else if dispatched
+                    && options.scalar == crate::options::Scalar::F64
+                    && f.cols == 1
+                    && ops >= super::zmm::AVX2_MIN_OPS
+                {
+                    any_avx512 = true;
+                    format!(" On an AVX2 CPU without AVX-512, {} (the runtime's `Avx2`) where `B` is a multiple of {avx2}: the vectoriser's `B`-wide values spill there.", super::zmm::AVX2_MARK)
                 } else {
                     String::new()
                 };

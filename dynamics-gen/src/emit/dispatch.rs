@@ -128,7 +128,7 @@ fn avx2_copy_cond() -> TokenStream {
 }
 
 /// The two copies whose batch bodies can run on the runtime's tokens ([`super::zmm`]).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq)]
 enum Isa {
     Avx512,
     Avx2,
@@ -566,8 +566,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let mid = format_ident!("{}_avx2", name);
     let body_fn = format_ident!("{}_body", name);
     let fused = wide_body(body, used);
-    // A large batch body's AVX-512 copy: its lane arithmetic as AVX-512 instructions.
-    let z_body = has_mark(item, super::zmm::DOC_MARK)
+    // A large batch body's AVX-512 and AVX2 copies: their lane arithmetic as instructions;
+    // a mid-sized one's AVX2 copy alone (`zmm::AVX2_MARK`).
+    let both = has_mark(item, super::zmm::DOC_MARK);
+    let z_body = (both || has_mark(item, super::zmm::AVX2_MARK))
         .then(|| super::zmm::token_body(&fused))
         .flatten();
     let cfg = dispatch_cfg();
@@ -641,7 +643,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
     let plain = quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*));
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
-        let Some(z_body) = &z_body else {
+        let Some(z_body) = z_body.as_ref().filter(|_| both || isa == Isa::Avx2) else {
             return (plain.clone(), quote!());
         };
         let body_z = format_ident!("{}_body_{}", name, isa.suffix());
@@ -1467,11 +1469,28 @@ mod tests {
         assert!(plain.contains(
             "The code of `forward_dynamics` called once per state: its body (2966 operations)"
         ));
-        // Its mass matrix and gravity batches are below the bound, as is everything of the
-        // UR5's: the vectoriser's code, and no token.
+        // Its gravity batch is below both bounds: the vectoriser's code, and no token.
         assert!(!solo.contains("gravity_batch_body_avx"));
+        // The UR5's inverse dynamics (297 operations, a vector) is above `AVX2_MIN_OPS` and
+        // below `MIN_OPS`: a body of instructions in the AVX2 copy alone. Its gravity (too
+        // small) and mass matrix (a matrix) keep the vectoriser's code in both copies.
         let ur5 = crate::Builder::new("ur5").generate().expect("generates");
-        assert!(!ur5.contains("_batch_body_avx") && !ur5.contains("lanes_avx"));
+        assert!(ur5.contains("unsafe fn inverse_dynamics_batch_body_avx2("));
+        assert!(ur5.contains(super::super::zmm::AVX2_MARK));
+        assert!(!ur5.contains("_batch_body_avx512") && !ur5.contains("mass_matrix_batch_body_avx"));
+        assert!(!ur5.contains("gravity_batch_body_avx"));
+        let k = ur5
+            .find("unsafe extern \"C\" fn inverse_dynamics_batch_avx512<")
+            .expect("the AVX-512 copy");
+        let copy = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
+        assert!(copy.contains("self.inverse_dynamics_batch_body::<true, B>(q, qd, qdd)"));
+        assert!(!copy.contains("B % "));
+        // Not for `f32`, whose AVX2 register holds 8 lanes.
+        let f32 = crate::Builder::new("ur5")
+            .scalar(crate::options::Scalar::F32)
+            .generate()
+            .expect("generates");
+        assert!(!f32.contains("_batch_body_avx"));
     }
 
     /// The angles are computed in the kernel from the input (offsets and mimic joints
@@ -1566,7 +1585,7 @@ mod tests {
         assert!(std.contains("self.inverse_dynamics_batch_avx2::<B>("));
         assert!(std.contains("self.inverse_dynamics_batch_body::<false, B>("));
         let batch = &std[std
-            .find("fn inverse_dynamics_batch_body")
+            .find("fn inverse_dynamics_batch_body<")
             .expect("a batch body")..];
         let batch: String = batch[..batch.find("\n    }\n").expect("its end")]
             .split_whitespace()
