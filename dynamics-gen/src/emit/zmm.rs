@@ -46,21 +46,24 @@ use syn::{parse_quote, BinOp, Expr, GenericArgument, Pat, UnOp};
 
 /// The fewest lane operations (after inlining) for a batch body to get its copies of
 /// instructions: the UR5's and the Panda's inverse dynamics (297 and 687) keep the
-/// vectoriser's, Solo-12's (1,310) gets it.
+/// vectoriser's in their AVX-512 copies (their AVX2 copies: [`AVX2_MIN_OPS`]), Solo-12's
+/// (1,310) gets it.
 pub const MIN_OPS: usize = 1000;
 
 /// The fewest lane operations for an `f64` batch body with a vector result (inverse and
 /// forward dynamics, gravity) to get its body of instructions in the AVX2 copy alone
 /// ([`AVX2_MARK`]): there a body of the vectoriser's, `B` = 8, holds each value in two
 /// 256-bit registers, and spills. Measured on a Zen 3 (AVX2 and FMA, no AVX-512; a scratch
-/// harness, old and new code in one binary, `B` = 8 against 8 single calls, medians of 31
-/// interleaved rounds, four runs each): the UR5's inverse dynamics (297 operations) 1.25–1.55×
-/// → 1.54–2.14× single calls, 316 → 264 instructions per state; the Panda's (687) 1.44–1.64×
-/// → 2.00–2.12×. The UR5's gravity (16 operations) lost (1.74 → 1.45×): the body of
-/// instructions runs once per register, and a small body does not pay for the calls; mass
-/// matrices lost more (1.33 → 0.94×), their 4 × 36 results copied out of each register's
-/// call. `f32`'s AVX2 register holds 8 lanes, the vectoriser's body one register per value:
-/// not measured, left alone.
+/// harness, the code before and after in one binary, `B` = 8 against 8 single calls of the
+/// same code, medians of 31 interleaved rounds, two runs; README "Batches of states"): the
+/// UR5's inverse dynamics (297 operations) 1.83×, 1.39× → 1.82×, 1.89× single calls (316 →
+/// 264 instructions per state, the kernel's change included), the Panda's (687) 1.63×, 1.51×
+/// → 2.07×, 2.14×, the UR5's forward dynamics (562) 1.97×, 1.86× → 2.61×, 2.34×. The UR5's
+/// gravity (16 operations) lost in a first trial (1.74 → 1.45×): the body of instructions runs
+/// once per register, and a small body does not pay for the calls; mass matrices lost more
+/// (1.33 → 0.94×), their 4 × 36 results copied out of each register's call. `f32`'s AVX2
+/// register holds 8 lanes, the vectoriser's body one register per value: not measured, left
+/// alone.
 pub const AVX2_MIN_OPS: usize = 250;
 
 /// The words of a batch function's doc comment that ask the dispatch for a body of
