@@ -67,9 +67,8 @@ const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_10
 /// forward dynamics (a body of 1,000–2,500 operations: AVX-512 and AVX2 bodies of
 /// instructions beside the vectoriser's) and inverse dynamics (250–1,000 operations with a
 /// vector result: an AVX2 body of instructions alone, `zmm::AVX2_MIN_OPS`) with `B` = 4 and
-/// 8. Solo-12's forward dynamics, on
-/// lanes in those two copies alone, runs its AVX2 instructions through the public functions
-/// with `B` = 4 (`tests/generated_batch.rs`).
+/// 8. Solo-12's forward dynamics, on lanes in those two copies alone, runs its AVX2
+/// instructions through the public functions with `B` = 4 (`tests/generated_batch.rs`).
 const BATCH_COPIES: &[(&str, &[&str], &[usize])] = &[(
     "urdf_panda",
     &["forward_dynamics", "inverse_dynamics"],

@@ -97,8 +97,8 @@ pub fn batch_functions(
         .as_deref()
         .and_then(|n| syn::parse_str::<Ident>(n).ok());
     let mut out = TokenStream::new();
-    // Which `Lanes` helpers the vectorised bodies call.
-    let (mut fuses, mut trig, mut any_avx512) = (false, false, false);
+    // Which `Lanes` helpers the vectorised bodies call (`any_token`: the runtime's tokens).
+    let (mut fuses, mut trig, mut any_token) = (false, false, false);
     for f in fns {
         if !emitted(f.name) {
             continue;
@@ -176,17 +176,17 @@ pub fn batch_functions(
                 };
                 // The dispatch gives a body of this size copies of instructions (`zmm`).
                 let large = if zmm_only {
-                    any_avx512 = true;
+                    any_token = true;
                     format!(" It runs so only where the CPU has AVX-512 and `B` is a multiple of {avx512}, or AVX2 with FMA and `B` a multiple of {avx2}: {} (the runtime's `Avx512` and `Avx2`); {} `{single}` once per state, as its body ({ops} operations) is too large for the optimiser to vectorise `B` wide (more than {MAX_LANES_OPS}).", super::zmm::DOC_MARK, super::zmm::ONLY_MARK)
                 } else if dispatched && ops >= super::zmm::MIN_OPS {
-                    any_avx512 = true;
+                    any_token = true;
                     format!(" A body this large ({ops} operations) is only partly vectorised by the optimiser, so {} (the runtime's `Avx512` and `Avx2`) where `B` is a multiple of a register's lanes ({avx512} and {avx2}).", super::zmm::DOC_MARK)
                 } else if dispatched
                     && options.scalar == crate::options::Scalar::F64
                     && f.cols == 1
                     && ops >= super::zmm::AVX2_MIN_OPS
                 {
-                    any_avx512 = true;
+                    any_token = true;
                     format!(" On an AVX2 CPU without AVX-512, {} (the runtime's `Avx2`) where `B` is a multiple of {avx2}: the vectoriser's `B`-wide values spill there.", super::zmm::AVX2_MARK)
                 } else {
                     String::new()
@@ -242,7 +242,7 @@ pub fn batch_functions(
             runtime,
             fuses,
             trig,
-            any_avx512,
+            any_token,
         ));
     }
     out
@@ -382,7 +382,7 @@ fn lanes_helpers(
     runtime: &TokenStream,
     fuses: bool,
     trig: bool,
-    avx512: bool,
+    tokens: bool,
 ) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let lanes = quote!(#runtime::Lanes<#t, B>);
@@ -453,8 +453,9 @@ fn lanes_helpers(
         }
     });
     // The operands and the tokens of the AVX-512 and AVX2 copies of large batch bodies
-    // (`super::zmm`), which exist only where the dispatch made them.
-    let avx512 = avx512.then(|| {
+    // (`super::zmm`) and the AVX2 copies of mid-sized ones, which exist only where the dispatch
+    // made them.
+    let tokens = tokens.then(|| {
         quote! {
             /// The lanes of `x`: `x` itself, or a scalar on every lane (the operands of the
             /// AVX-512 batch bodies' instructions).
@@ -493,7 +494,7 @@ fn lanes_helpers(
             }
         }
     });
-    quote!(#mul_add #sin_cos #avx512)
+    quote!(#mul_add #sin_cos #tokens)
 }
 
 #[cfg(test)]
