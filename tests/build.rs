@@ -131,10 +131,11 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
 /// vectoriser's and whose forward dynamics (2,966) runs on lanes in the AVX-512 and AVX2
 /// copies alone (per-state calls elsewhere), and the pendulum in f64, whose functions are too
 /// small for the CPU dispatch (its vectorised batch bodies are out-of-line `extern "C"` parts,
-/// which the `no_panic` test's machine-code check reads). Every generated robot has the batch
-/// functions; instantiating them `B` wide for all of them made two test binaries take over
-/// ten CPU-minutes each, and G1's (bodies up to 9,700 operations, five copies of each in a
-/// debug build, which does not prune `if const` branches) took the CI run past its 90 minutes.
+/// which the `no_panic` test's machine-code check reads). Only these, the [`SAMPLE`] and
+/// [`BATCH_COPIES`] are generated with the batch functions ([`with_batch`]); instantiating
+/// them `B` wide for every robot made two test binaries take over ten CPU-minutes each, and
+/// G1's (bodies up to 9,700 operations, five copies of each in a debug build, which does not
+/// prune `if const` branches) took the CI run past its 90 minutes.
 const BATCH: &[&str] = &[
     "shipped_ur5",
     "shipped_ur5_f32_no_std",
@@ -476,37 +477,10 @@ fn main() {
     let mut derivative_list = String::new();
     let (mut batch_list, mut batch_std_list) = (String::new(), String::new());
     let mut regressor_registry = String::new();
+    write_cases(&cases, &out);
     for case in &cases {
         let derivatives = !WITHOUT_DERIVATIVES.contains(&case.module.as_str());
-        let functions = (!derivatives).then(|| {
-            dynamics_gen::options::FUNCTIONS
-                .iter()
-                .filter(|f| !f.contains("derivative") && **f != "mass_matrix_inverse")
-                .filter(|f| !f.contains("regressor") && !f.contains("parameters"))
-                .filter(|f| !f.starts_with("frame_") || !case.robot.frames.is_empty())
-                .map(|f| f.to_string())
-                .collect()
-        });
-        let options = Options {
-            name: Some("Robot".into()),
-            scalar: case.scalar,
-            no_std: case.no_std,
-            friction: case.friction,
-            functions,
-            runtime_parameters: case.runtime,
-            cpu_dispatch: !case.portable,
-            sin_cos_variants: SIN_COS.contains(&case.module.as_str()),
-            method: if case.module.contains("lagrangian_") {
-                dynamics_gen::Method::Lagrangian
-            } else {
-                dynamics_gen::Method::NewtonEuler
-            },
-            ..Default::default()
-        };
-        let code = dynamics_gen::generate_file(&case.robot, &options, &case.spec)
-            .unwrap_or_else(|e| panic!("{}: {e}", case.module));
         let file = format!("{}.rs", case.module);
-        std::fs::write(out.join(&file), code).expect("OUT_DIR is writable");
         let (nq, nv) = (case.robot.nq(), case.robot.nv());
         let s = case.scalar.as_str();
         let frames = if case.robot.frames.is_empty() {
@@ -649,6 +623,72 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("trig_kernels.rs"), kernels).expect("OUT_DIR is writable");
+}
+
+/// The generator's options for `case`.
+fn options(case: &Case) -> Options {
+    let derivatives = !WITHOUT_DERIVATIVES.contains(&case.module.as_str());
+    let batch = with_batch(&case.module);
+    let functions = (!derivatives || !batch).then(|| {
+        dynamics_gen::options::FUNCTIONS
+            .iter()
+            .filter(|f| derivatives || (!f.contains("derivative") && **f != "mass_matrix_inverse"))
+            .filter(|f| derivatives || (!f.contains("regressor") && !f.contains("parameters")))
+            .filter(|f| batch || !f.ends_with("_batch"))
+            .filter(|f| !f.starts_with("frame_") || !case.robot.frames.is_empty())
+            .map(|f| f.to_string())
+            .collect()
+    });
+    Options {
+        name: Some("Robot".into()),
+        scalar: case.scalar,
+        no_std: case.no_std,
+        friction: case.friction,
+        functions,
+        runtime_parameters: case.runtime,
+        cpu_dispatch: !case.portable,
+        sin_cos_variants: SIN_COS.contains(&case.module.as_str()),
+        method: if case.module.contains("lagrangian_") {
+            dynamics_gen::Method::Lagrangian
+        } else {
+            dynamics_gen::Method::NewtonEuler
+        },
+        ..Default::default()
+    }
+}
+
+/// Generates every case into `out/<module>.rs`, on as many threads as the machine has cores
+/// (at most 4), the largest robots first. On one thread the 66 cases took about 4 minutes of
+/// a CI run, on its critical path: the test library waits for them.
+fn write_cases(cases: &[Case], out: &std::path::Path) {
+    let mut order: Vec<usize> = (0..cases.len()).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(cases[k].robot.nv()));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&c) = order.get(k) else { break };
+                let case = &cases[c];
+                let code = dynamics_gen::generate_file(&case.robot, &options(case), &case.spec)
+                    .unwrap_or_else(|e| panic!("{}: {e}", case.module));
+                std::fs::write(out.join(format!("{}.rs", case.module)), code)
+                    .expect("OUT_DIR is writable");
+            });
+        }
+    });
+}
+
+/// Whether the case `module` is generated with the batch functions (`*_batch`): the cases
+/// whose batch functions are called ([`BATCH`], [`BATCH_COPIES`], the benches' robots) and
+/// the [`SAMPLE`], which the release `no_panic` test and clippy check. The others leave them
+/// out: never called, their bodies (AVX-512 and AVX2 bodies of instructions beside the
+/// vectoriser's) were 69 of the 300 MB of generated Rust this crate compiles.
+fn with_batch(module: &str) -> bool {
+    BATCH.contains(&module)
+        || SAMPLE.contains(&module)
+        || BATCH_COPIES.iter().any(|(m, _, _)| *m == module)
 }
 
 /// Panics unless the [`SAMPLE`] of cases holds every kind of robot and every generator option

@@ -11,12 +11,16 @@ pub struct TwoArms;
 #[dynamics(file = "tests/data/robots/trees/solo12.urdf", floating_base)]
 pub struct Solo;
 
-// The feet in a chosen order (default: every leaf link of the file).
+// The feet in a chosen order (default: every leaf link of the file), with only the frames'
+// functions (the whole of Solo-12's code is `Solo`'s: compiled twice, it was most of this
+// test's time).
 #[derive(Dynamics)]
 #[dynamics(
     file = "tests/data/robots/trees/solo12.urdf",
     floating_base,
-    frames(HR_FOOT, FL_FOOT)
+    frames(HR_FOOT, FL_FOOT),
+    functions(frame_poses, frame_jacobians_body),
+    no_runtime_trait
 )]
 pub struct SoloFeet;
 
