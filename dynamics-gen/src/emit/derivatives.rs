@@ -60,12 +60,25 @@ pub fn derivative_functions(
         &[&x.inverse_dynamics, &x.d_tau_dq, &x.d_tau_dqd],
         &[column, square, square],
     );
-    let fd_derivatives = emit(
-        "forward_dynamics_derivatives",
-        &fd_args,
-        &[&x.d_qdd_dq, &x.d_qdd_dqd, &x.mass_matrix_inverse],
-        &[square, square, square],
-    );
+    // `forward_dynamics_derivatives` needs `q̈` as much as `forward_dynamics_with_derivatives`
+    // does (`∂q̈/∂q` is taken at it): the two have the same operations. Where both are
+    // generated the first calls the second and drops `q̈` (below), so that the body is written
+    // and compiled once (the Panda's file 3.1 → 2.8 MB). The call costs the copy of the three
+    // matrices: the Panda's 6,955 → 7,151 instructions (+2.8 %, callgrind, its AVX2 copy).
+    // Selected alone, or with the `*_from_sin_cos` variants (a variant takes its sines in its
+    // own body), the function keeps a body of its own.
+    let delegate =
+        super::emitted(options, "forward_dynamics_with_derivatives") && !options.sin_cos_variants;
+    let fd_derivatives = if delegate {
+        quote!()
+    } else {
+        emit(
+            "forward_dynamics_derivatives",
+            &fd_args,
+            &[&x.d_qdd_dq, &x.d_qdd_dqd, &x.mass_matrix_inverse],
+            &[square, square, square],
+        )
+    };
     let fd_with = emit(
         "forward_dynamics_with_derivatives",
         &fd_args,
@@ -140,16 +153,7 @@ pub fn derivative_functions(
             },
         ),
     };
-    // `forward_dynamics_derivatives` needs `q̈` as much as `forward_dynamics_with_derivatives`
-    // does (`∂q̈/∂q` is taken at it): the two have the same operations. Where both are
-    // generated the first calls the second and drops `q̈`, so that the body is compiled once
-    // (the Panda's file 3.1 → 2.8 MB). The call costs the copy of the three matrices: the
-    // Panda's 6,955 → 7,151 instructions (+2.8 %, callgrind, its AVX2 copy); selected alone,
-    // or with the `*_from_sin_cos` variants (a variant takes its sines in its own body), the
-    // function keeps a body of its own.
-    let fd_derivatives = if super::emitted(options, "forward_dynamics_with_derivatives")
-        && !options.sin_cos_variants
-    {
+    let fd_derivatives = if delegate {
         quote! {
             let (_, d_q, d_qd, m_inv) = self.forward_dynamics_with_derivatives(q, qd, tau);
             (d_q, d_qd, m_inv)
