@@ -61,7 +61,9 @@
 //! that: it generates with `--no-cpu-dispatch`). Where the crate is already compiled with
 //! AVX-512 (e.g. `-C target-cpu=native` on such a CPU), and on other architectures, the `cfg`
 //! removes the dispatch and the code is what it was; where it is compiled with AVX2 and FMA
-//! (`-C target-cpu=x86-64-v3`) there is no AVX2 copy, as the portable one has both. On a CPU
+//! (`-C target-cpu=x86-64-v3`) there is no AVX2 copy, as the portable one has both, except a
+//! batch function's with a body of instructions (below): that copy runs there without a
+//! check of the CPU, for `B` a multiple of 4 (`f64`) or 8 (`f32`). On a CPU
 //! with FMA the results can differ from the portable code's by the rounding of the fused
 //! operations.
 //!
@@ -151,12 +153,13 @@ impl Isa {
         }
     }
 
-    /// The `cfg` of the copy.
+    /// The `cfg` of a copy with a body of instructions, and of that body: wherever the
+    /// dispatch is. The AVX2 one is there also where the crate is compiled with AVX2 and FMA
+    /// (`-C target-cpu=native` on a CPU without AVX-512, `x86-64-v3`), where it runs without a
+    /// check of the CPU ([`native_avx2_call`]); a copy without such a body is not compiled
+    /// there, as it would be the portable code again.
     fn cfg(self) -> TokenStream {
-        match self {
-            Isa::Avx512 => dispatch_cfg(),
-            Isa::Avx2 => avx2_cfg(),
-        }
+        dispatch_cfg()
     }
 
     /// Its `target_feature`s.
@@ -674,6 +677,15 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     };
     let (fast_call, fast_body) = copy(Isa::Avx512, &fast);
     let (mid_call, mid_body) = copy(Isa::Avx2, &mid);
+    // With a body of instructions, the AVX2 copy is also what a crate compiled with AVX2 and
+    // FMA runs (for `B` that fill its registers); without one it would be the portable code.
+    let (mid_cfg, native) = match (mid_body.is_empty(), generic_names.first()) {
+        (false, Some(b)) => (
+            Isa::Avx2.cfg(),
+            native_avx2_call(&mid, b, &Isa::Avx2.lanes(scalar), &arg_names),
+        ),
+        _ => (avx2_cfg, quote!()),
+    };
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -689,6 +701,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
                         return unsafe { self.#mid #fast_turbofish (#(#arg_names),*) };
                     }
                 }
+                #native
             }
             #fallback
         }
@@ -706,7 +719,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #fast_body
 
         #[doc = #mid_doc]
-        #avx2_cfg
+        #mid_cfg
         #[target_feature(enable = "avx2,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
         unsafe extern "C" fn #mid #fast_generics (#args) #ret {
@@ -735,6 +748,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 ///         if const { B % 8 == 0 } && Self::has_avx512() { return unsafe { self.f_batch_avx512::<B>(args) }; }
 ///         #[cfg(not(all(target_feature = "avx2", target_feature = "fma")))]
 ///         { if const { B % 4 == 0 } && Self::has_avx2() { return unsafe { self.f_batch_avx2::<B>(args) }; } }
+///         #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
+///         { if const { B % 4 == 0 } { return unsafe { self.f_batch_avx2::<B>(args) }; } }
 ///     }
 ///     (f once per state)
 /// }
@@ -828,6 +843,12 @@ fn zmm_only(
     };
     let (fast_call, fast_items) = copy(Isa::Avx512);
     let (mid_call, mid_items) = copy(Isa::Avx2);
+    let native = native_avx2_call(
+        &format_ident!("{}_{}", name, Isa::Avx2.suffix()),
+        b,
+        &Isa::Avx2.lanes(scalar),
+        arg_names,
+    );
     let cfg = dispatch_cfg();
     let avx2 = avx2_cond();
     quote! {
@@ -841,6 +862,7 @@ fn zmm_only(
                 {
                     #mid_call
                 }
+                #native
             }
             #per_state
         }
@@ -848,6 +870,28 @@ fn zmm_only(
         #fast_items
 
         #mid_items
+    }
+}
+
+/// In a batch function's wrapper, where the crate is compiled with AVX2 and FMA (and without
+/// AVX-512, or there would be no dispatch): its AVX2 copy `mid`, which holds the body of
+/// instructions, for `B` (`b`) a multiple of the register's `lanes`, without a check of the
+/// CPU. Otherwise such a build ran the vectoriser's `B`-wide body, or for the largest bodies
+/// the single-state function once per state.
+fn native_avx2_call(
+    mid: &Ident,
+    b: &Ident,
+    lanes: &proc_macro2::Literal,
+    arg_names: &[Ident],
+) -> TokenStream {
+    quote! {
+        #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
+        {
+            if const { #b % #lanes == 0 } {
+                // SAFETY: the crate is compiled with the copy's features.
+                return unsafe { self.#mid::<#b>(#(#arg_names),*) };
+            }
+        }
     }
 }
 
@@ -1450,6 +1494,28 @@ mod tests {
         assert!(wrapper
             .contains("return unsafe { self.forward_dynamics_batch_avx2::<B>(q, qd, tau) };"));
         assert!(wrapper.contains("*o = single(q, qd, tau);"));
+        // Where the crate is compiled with AVX2 and FMA (no AVX2 check, no copy of the
+        // portable code), the AVX2 copy of a body of instructions runs without a check; only
+        // those copies exist there.
+        let native = "#[cfg(all(target_feature = \"avx2\", target_feature = \"fma\"))]";
+        let flat_wrapper: String = wrapper.split_whitespace().collect();
+        assert!(flat_wrapper.contains(
+            "#[cfg(all(target_feature=\"avx2\",target_feature=\"fma\"))]{ifconst{B%4==0}{returnunsafe{self.forward_dynamics_batch_avx2::<B>(q,qd,tau)};}}"
+        ));
+        let k = solo
+            .find("pub fn inverse_dynamics_batch<const B: usize>(")
+            .expect("the batch function");
+        assert!(solo[k..k + solo[k..].find("\n    }\n").expect("its end")].contains(native));
+        let k = solo
+            .find("unsafe extern \"C\" fn inverse_dynamics_batch_avx2<")
+            .expect("the AVX2 copy");
+        let attrs = &solo[solo[..k].rfind("///").expect("its doc")..k];
+        assert!(attrs
+            .contains("#[cfg(all(target_arch = \"x86_64\", not(target_feature = \"avx512f\")))]"));
+        let k = solo
+            .find("pub fn gravity_batch<")
+            .expect("a batch without such a body");
+        assert!(!solo[k..k + solo[k..].find("\n    }\n").expect("its end")].contains(native));
         assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx512("));
         assert!(solo.contains("unsafe fn forward_dynamics_batch_body_avx2("));
         for absent in ["_batch_body<", "_batch_portable"].map(|s| format!("forward_dynamics{s}")) {
