@@ -61,9 +61,10 @@
 //! that: it generates with `--no-cpu-dispatch`). Where the crate is already compiled with
 //! AVX-512 (e.g. `-C target-cpu=native` on such a CPU), and on other architectures, the `cfg`
 //! removes the dispatch and the code is what it was; where it is compiled with AVX2 and FMA
-//! (`-C target-cpu=x86-64-v3`) there is no AVX2 copy, as the portable one has both, except a
-//! batch function's with a body of instructions (below): that copy runs there without a
-//! check of the CPU, for `B` a multiple of 4 (`f64`) or 8 (`f32`). On a CPU
+//! (`-C target-cpu=x86-64-v3`) there is no AVX2 copy, as the portable one has both. Except in
+//! both, a batch function's copy with a body of instructions (below), AVX-512 or AVX2 as the
+//! crate's features allow: it runs there without a check of the CPU, for `B` a multiple of
+//! the register's lanes ([`native_call`]). On a CPU
 //! with FMA the results can differ from the portable code's by the rounding of the fused
 //! operations.
 //!
@@ -111,6 +112,20 @@ fn dispatch_cond() -> TokenStream {
     quote!(all(target_arch = "x86_64", not(target_feature = "avx512f")))
 }
 
+/// The predicate of code compiled with the features of the AVX-512 copy (`-C
+/// target-cpu=native` on such a CPU, `x86-64-v4`): no dispatch there, but a batch function
+/// with an AVX-512 body of instructions runs it ([`native_call`]).
+fn native_avx512_cond() -> TokenStream {
+    quote!(all(
+        target_arch = "x86_64",
+        target_feature = "avx512f",
+        target_feature = "avx512vl",
+        target_feature = "avx512dq",
+        target_feature = "avx512bw",
+        target_feature = "fma"
+    ))
+}
+
 /// Within the dispatch, the predicate of the AVX2 copy: code not already compiled with AVX2
 /// and FMA (e.g. `-C target-cpu=x86-64-v3`, whose portable copy has both).
 fn avx2_cond() -> TokenStream {
@@ -154,12 +169,28 @@ impl Isa {
     }
 
     /// The `cfg` of a copy with a body of instructions, and of that body: wherever the
-    /// dispatch is. The AVX2 one is there also where the crate is compiled with AVX2 and FMA
-    /// (`-C target-cpu=native` on a CPU without AVX-512, `x86-64-v3`), where it runs without a
-    /// check of the CPU ([`native_avx2_call`]); a copy without such a body is not compiled
-    /// there, as it would be the portable code again.
+    /// dispatch is, and where the crate is compiled with the copy's features (`-C
+    /// target-cpu=native`; `x86-64-v3` for AVX2, `x86-64-v4` for AVX-512), where it runs
+    /// without a check of the CPU ([`native_call`]). A copy without such a body is not
+    /// compiled there, as it would be the portable code again. (The AVX2 one needs no second
+    /// predicate: a crate compiled with AVX2 and FMA but not AVX-512 has the dispatch.)
     fn cfg(self) -> TokenStream {
-        dispatch_cfg()
+        match self {
+            Isa::Avx512 => {
+                let (dispatch, native) = (dispatch_cond(), native_avx512_cond());
+                quote!(#[cfg(any(#dispatch, #native))])
+            }
+            Isa::Avx2 => dispatch_cfg(),
+        }
+    }
+
+    /// The predicate of code compiled with the copy's features, under which a batch function
+    /// calls its copy with a body of instructions without a check ([`native_call`]).
+    fn native_cond(self) -> TokenStream {
+        match self {
+            Isa::Avx512 => native_avx512_cond(),
+            Isa::Avx2 => quote!(all(target_feature = "avx2", target_feature = "fma")),
+        }
     }
 
     /// Its `target_feature`s.
@@ -677,15 +708,17 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     };
     let (fast_call, fast_body) = copy(Isa::Avx512, &fast);
     let (mid_call, mid_body) = copy(Isa::Avx2, &mid);
-    // With a body of instructions, the AVX2 copy is also what a crate compiled with AVX2 and
-    // FMA runs (for `B` that fill its registers); without one it would be the portable code.
-    let (mid_cfg, native) = match (mid_body.is_empty(), generic_names.first()) {
-        (false, Some(b)) => (
-            Isa::Avx2.cfg(),
-            native_avx2_call(&mid, b, &Isa::Avx2.lanes(scalar), &arg_names),
-        ),
-        _ => (avx2_cfg, quote!()),
+    // With a body of instructions, a copy is also what a crate compiled with its features
+    // runs (for `B` that fill its registers); without one it would be the portable code.
+    let native = |isa: Isa, copy: &Ident, body: &TokenStream, cfg: TokenStream| match (
+        body.is_empty(),
+        generic_names.first(),
+    ) {
+        (false, Some(b)) => (isa.cfg(), native_call(isa, copy, b, scalar, &arg_names)),
+        _ => (cfg, quote!()),
     };
+    let (fast_cfg, native_fast) = native(Isa::Avx512, &fast, &fast_body, cfg.clone());
+    let (mid_cfg, native_mid) = native(Isa::Avx2, &mid, &mid_body, avx2_cfg);
     quote! {
         #attrs
         #[allow(unsafe_code)]
@@ -701,15 +734,16 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
                         return unsafe { self.#mid #fast_turbofish (#(#arg_names),*) };
                     }
                 }
-                #native
+                #native_mid
             }
+            #native_fast
             #fallback
         }
 
         #portable
 
         #[doc = #fast_doc]
-        #cfg
+        #fast_cfg
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
         unsafe extern "C" fn #fast #fast_generics (#args) #ret {
@@ -843,12 +877,10 @@ fn zmm_only(
     };
     let (fast_call, fast_items) = copy(Isa::Avx512);
     let (mid_call, mid_items) = copy(Isa::Avx2);
-    let native = native_avx2_call(
-        &format_ident!("{}_{}", name, Isa::Avx2.suffix()),
-        b,
-        &Isa::Avx2.lanes(scalar),
-        arg_names,
-    );
+    let [native_fast, native_mid] = [Isa::Avx512, Isa::Avx2].map(|isa| {
+        let copy = format_ident!("{}_{}", name, isa.suffix());
+        native_call(isa, &copy, b, scalar, arg_names)
+    });
     let cfg = dispatch_cfg();
     let avx2 = avx2_cond();
     quote! {
@@ -862,8 +894,9 @@ fn zmm_only(
                 {
                     #mid_call
                 }
-                #native
+                #native_mid
             }
+            #native_fast
             #per_state
         }
 
@@ -873,23 +906,26 @@ fn zmm_only(
     }
 }
 
-/// In a batch function's wrapper, where the crate is compiled with AVX2 and FMA (and without
-/// AVX-512, or there would be no dispatch): its AVX2 copy `mid`, which holds the body of
-/// instructions, for `B` (`b`) a multiple of the register's `lanes`, without a check of the
-/// CPU. Otherwise such a build ran the vectoriser's `B`-wide body, or for the largest bodies
-/// the single-state function once per state.
-fn native_avx2_call(
-    mid: &Ident,
+/// In a batch function's wrapper, where the crate is compiled with the features of `isa`'s
+/// copy `copy`, which holds the body of instructions: that copy, for `B` (`b`) a multiple of
+/// the register's lanes, without a check of the CPU. Otherwise such a build ran the
+/// vectoriser's `B`-wide body, or for the largest bodies the single-state function once per
+/// state. The AVX2 call sits in the dispatch's block (a crate with AVX-512 has no such call),
+/// the AVX-512 one outside it (such a crate has no dispatch).
+fn native_call(
+    isa: Isa,
+    copy: &Ident,
     b: &Ident,
-    lanes: &proc_macro2::Literal,
+    scalar: Scalar,
     arg_names: &[Ident],
 ) -> TokenStream {
+    let (cond, lanes) = (isa.native_cond(), isa.lanes(scalar));
     quote! {
-        #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
+        #[cfg(#cond)]
         {
             if const { #b % #lanes == 0 } {
                 // SAFETY: the crate is compiled with the copy's features.
-                return unsafe { self.#mid::<#b>(#(#arg_names),*) };
+                return unsafe { self.#copy::<#b>(#(#arg_names),*) };
             }
         }
     }
@@ -1512,6 +1548,17 @@ mod tests {
         let attrs = &solo[solo[..k].rfind("///").expect("its doc")..k];
         assert!(attrs
             .contains("#[cfg(all(target_arch = \"x86_64\", not(target_feature = \"avx512f\")))]"));
+        // Where it is compiled with AVX-512 (no dispatch), the AVX-512 copy, unchecked.
+        assert!(flat_wrapper.contains(
+            "target_feature=\"avx512bw\",target_feature=\"fma\"))]{ifconst{B%8==0}{returnunsafe{self.forward_dynamics_batch_avx512::<B>(q,qd,tau)};}}"
+        ));
+        let k = solo
+            .find("unsafe extern \"C\" fn inverse_dynamics_batch_avx512<")
+            .expect("the AVX-512 copy");
+        let attrs: String = solo[solo[..k].rfind("///").expect("its doc")..k]
+            .split_whitespace()
+            .collect();
+        assert!(attrs.contains("#[cfg(any(all(target_arch=\"x86_64\",not(target_feature=\"avx512f\")),all(target_arch=\"x86_64\",target_feature=\"avx512f\","));
         let k = solo
             .find("pub fn gravity_batch<")
             .expect("a batch without such a body");
