@@ -785,6 +785,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 ///         #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
 ///         { if const { B % 4 == 0 } { return unsafe { self.f_batch_avx2::<B>(args) }; } }
 ///     }
+///     #[cfg(all(target_arch = "x86_64", target_feature = "avx512f", …, target_feature = "fma"))]
+///     { if const { B % 8 == 0 } { return unsafe { self.f_batch_avx512::<B>(args) }; } }
 ///     (f once per state)
 /// }
 /// unsafe extern "C" fn f_batch_avx512<const B: usize>(&self, args) -> [R; B]  // AVX-512
