@@ -683,9 +683,10 @@ fn write_cases(cases: &[Case], out: &std::path::Path) {
 
 /// Whether the case `module` is generated with the batch functions (`*_batch`): the cases
 /// whose batch functions the tests call ([`BATCH`], [`BATCH_COPIES`]) and the [`SAMPLE`],
-/// which holds the benches' robots and which the release `no_panic` test and clippy check. The others leave them
-/// out: never called, their bodies (AVX-512 and AVX2 bodies of instructions beside the
-/// vectoriser's) were 69 of the 300 MB of generated Rust this crate compiles.
+/// which holds the benches' robots and which the release `no_panic` test and clippy check.
+/// The others leave them out: never called, their bodies (AVX-512 and AVX2 bodies of
+/// instructions beside the vectoriser's) were 69 of the 300 MB of generated Rust this crate
+/// compiles.
 fn with_batch(module: &str) -> bool {
     BATCH.contains(&module)
         || SAMPLE.contains(&module)

@@ -837,8 +837,9 @@ fn zmm_only(
         };
     };
     // A copy for `isa`: its call in the wrapper (after its `const` test of `B` and its CPU
-    // check), the copy and its body of instructions.
-    let copy = |isa: Isa| -> (TokenStream, TokenStream) {
+    // check), the copy and its body of instructions, and its unchecked call where the crate
+    // has its features (`native_call`).
+    let copy = |isa: Isa| -> (TokenStream, TokenStream, TokenStream) {
         let lanes = isa.lanes(scalar);
         let (fast, body_z) = (
             format_ident!("{}_{}", name, isa.suffix()),
@@ -875,14 +876,11 @@ fn zmm_only(
 
             #body_item
         };
-        (call, items)
+        let native = native_call(isa, &fast, b, scalar, arg_names);
+        (call, items, native)
     };
-    let (fast_call, fast_items) = copy(Isa::Avx512);
-    let (mid_call, mid_items) = copy(Isa::Avx2);
-    let [native_fast, native_mid] = [Isa::Avx512, Isa::Avx2].map(|isa| {
-        let copy = format_ident!("{}_{}", name, isa.suffix());
-        native_call(isa, &copy, b, scalar, arg_names)
-    });
+    let (fast_call, fast_items, native_fast) = copy(Isa::Avx512);
+    let (mid_call, mid_items, native_mid) = copy(Isa::Avx2);
     let cfg = dispatch_cfg();
     let avx2 = avx2_cond();
     quote! {
