@@ -115,9 +115,10 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// vectoriser's bodies). In line, the optimiser writes each state's vector by shuffles of
     /// the registers, where `scatter` has the body store its registers, reads them back one lane
     /// at a time and copies its result to the caller's. Measured on a Zen 3 (default profile,
-    /// the old and new generated code in one binary, `B` = 8 against 8 single calls, per state):
-    /// the UR5's inverse dynamics 30.2 → 28.5 ns, the Panda's 45.1 → 42.3 ns
-    /// (`docs/performance.md`). Plain loops, as in [`Self::gather`], for `no_panic`.
+    /// the old and new generated code in one binary, `B` = 8, per state, two runs): the UR5's
+    /// inverse dynamics 30.2 → 28.5 and 29.8 → 28.5 ns, the Panda's 45.1 → 42.3 and 45.1 →
+    /// 42.0 ns; callgrind 264 → 254 and 420 → 411 instructions (`docs/performance.md`). Plain
+    /// loops, as in [`Self::gather`], for `no_panic`.
     #[cfg_attr(debug_assertions, inline)]
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]

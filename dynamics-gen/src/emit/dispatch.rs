@@ -1001,9 +1001,9 @@ fn token_body_item(
 /// runtime's `scatter_column` instead, which is inlined: the AVX2 bodies of instructions'
 /// results are whole registers, which the optimiser then writes to each state's vector by
 /// shuffles, where the out-of-line `scatter` has them stored, read back a lane at a time and
-/// copied again (the UR5's inverse dynamics, `B` = 8, 30.2 → 28.5 ns per state on a Zen 3;
-/// `dynamics_runtime::Lanes::scatter_column`). The AVX-512 bodies keep `scatter`: not
-/// measured (no AVX-512 machine at hand when this was written).
+/// copied again (the UR5's inverse dynamics, `B` = 8, 264 → 254 instructions and about 30 →
+/// 28.5 ns per state on a Zen 3; `dynamics_runtime::Lanes::scatter_column`). The AVX-512
+/// bodies keep `scatter`: not measured (no AVX-512 machine at hand when this was written).
 fn scatter_columns(body: &TokenStream) -> TokenStream {
     let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
     let single_column = |t: Option<&TokenTree>| {
