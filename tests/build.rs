@@ -842,10 +842,10 @@ pub const BATCH_COPIES_DIMS: (usize, usize) = ({nq}, {nv});
 
 /// The source of `batch_instances` for a [`BATCH`] module: the batch functions at the widths
 /// the tests call them with (4 states, and a whole AVX-512 register), instantiated in this
-/// library. The test profile (opt-level 1) shares generic instances with the crates
-/// downstream, so the test binaries (`generated_batch`, `no_alloc`) compile the small
-/// dispatching wrappers and call these bodies and copies, instead of compiling them again
-/// each (they took about 20 CPU-minutes each).
+/// library. The test profile (opt-level 0 for this crate, 1 before) shares generic instances
+/// with the crates downstream, so the test binaries (`generated_batch`, `no_alloc`) compile
+/// the small dispatching wrappers and call these bodies and copies, instead of compiling them
+/// again each (they took about 20 CPU-minutes each).
 fn batch_instances(s: &str) -> String {
     format!(
         r#"

@@ -24,8 +24,9 @@
 //! where `debug_assertions` are on: an unoptimised build then calls them instead of pasting
 //! thousands of them into a body (LLVM's always-inliner took 26 of the 49 s that G1's four
 //! batch functions, `B` = 8, took to compile without debug info), and an optimised one with
-//! debug assertions (this project's tests, at opt-level 1) still inlines them, as they are
-//! one instruction each.
+//! debug assertions (opt-level 1, at which this project's tests compile the other crates)
+//! still inlines them, as they are one instruction each. (The test crate's generated code is
+//! compiled at opt-level 0, where they are calls.)
 //!
 //! Measured on G1's four batch functions with `B` = 8, in a crate of their own (before: the
 //! methods generic over `B`, with a branch for lanes that fill no register and a loop for
