@@ -95,7 +95,17 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
                 })))
             });
         }
-        // Each lane array read once, its values written to the `B` matrices.
+        Self::scatter_loops(cols)
+    }
+
+    /// The transpose of [`Self::scatter`] as plain loops: each lane array read once, its values
+    /// written to the `B` matrices.
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    fn scatter_loops<const R: usize, const C: usize>(cols: &[[Self; R]; C]) -> [SMatrix<T, R, C>; B]
+    where
+        T: Default + Scalar,
+    {
         let mut out = [SMatrix::from_array_storage(ArrayStorage([[T::default(); R]; C])); B];
         for (c, col) in cols.iter().enumerate() {
             for (r, lanes) in col.iter().enumerate() {
@@ -118,7 +128,8 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// the old and new generated code in one binary, `B` = 8, per state, two runs): the UR5's
     /// inverse dynamics 30.2 → 28.5 and 29.8 → 28.5 ns, the Panda's 45.1 → 42.3 and 45.1 →
     /// 42.0 ns; callgrind 264 → 254 and 420 → 411 instructions (`docs/performance.md`). Plain
-    /// loops, as in [`Self::gather`], for `no_panic`.
+    /// loops (`scatter_loops`, [`Self::scatter`]'s for large matrices), as in [`Self::gather`],
+    /// for `no_panic`.
     #[cfg_attr(debug_assertions, inline)]
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
@@ -126,17 +137,7 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     where
         T: Default + Scalar,
     {
-        let mut out = [SMatrix::from_array_storage(ArrayStorage([[T::default(); R]; 1])); B];
-        let [col] = cols;
-        for (r, lanes) in col.iter().enumerate() {
-            for (m, &v) in out.iter_mut().zip(&lanes.0) {
-                let [c] = &mut m.data.0;
-                if let Some(x) = c.get_mut(r) {
-                    *x = v;
-                }
-            }
-        }
-        out
+        Self::scatter_loops(cols)
     }
 
     /// A function of an array to two arrays of the same length (such as the sines and
