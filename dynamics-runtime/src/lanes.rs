@@ -98,8 +98,9 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
         Self::scatter_loops(cols)
     }
 
-    /// The transpose of [`Self::scatter`] as plain loops: each lane array read once, its values
-    /// written to the `B` matrices.
+    /// [`Self::scatter`]'s transpose as plain loops (its form for matrices over 8 × 8, and
+    /// [`Self::scatter_column`]'s): each lane array read once, its values written to the `B`
+    /// matrices.
     #[cfg_attr(debug_assertions, inline)]
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn scatter_loops<const R: usize, const C: usize>(cols: &[[Self; R]; C]) -> [SMatrix<T, R, C>; B]
