@@ -1,8 +1,9 @@
 //! Operation counts and code size of each generated function.
 //!
 //! The counts are those of the expression graph live from a function's outputs, every
-//! shared node counted once ([`crate::expr::ExprGraph::op_counts`]): exactly the arithmetic
-//! the generated straight-line code performs. For comparison, Featherstone's commonly cited
+//! shared node counted once ([`crate::expr::ExprGraph::op_counts`]), after the merging of
+//! equivalent nodes the emitter applies ([`crate::expr::equivalent`]): exactly the
+//! arithmetic the generated straight-line code performs. For comparison, Featherstone's commonly cited
 //! count for the recursive Newton–Euler algorithm on an n-joint chain of revolute joints is
 //! `93n − 69` multiplications and `81n − 66` additions ([`featherstone_rnea`]).
 
@@ -97,6 +98,13 @@ pub fn featherstone_rnea(n: usize) -> (usize, usize) {
     ((93 * n).saturating_sub(69), (81 * n).saturating_sub(66))
 }
 
+/// The operation counts of the function `roots` of `g` as it is emitted: after
+/// [`crate::expr::equivalent::merge_equivalent`].
+fn counted(g: &crate::expr::ExprGraph, roots: &[ExprId]) -> OpCounts {
+    let (merged, roots) = crate::expr::equivalent::merge_equivalent(g, roots);
+    merged.op_counts(&roots)
+}
+
 /// The statistics of `generated`, with line counts taken from `code`, the formatted code of
 /// the same generation (e.g. the output of [`crate::generate_file`]).
 pub fn stats(generated: &Generated, code: &str) -> Stats {
@@ -112,18 +120,18 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         .iter()
         .map(|&(name, roots)| FunctionStats {
             name,
-            ops: d.graph.op_counts(roots),
+            ops: counted(&d.graph, roots),
             lines: function_lines(code, name),
         })
         .collect();
     functions.push(FunctionStats {
         name: "kinetic_energy",
-        ops: d.graph.op_counts(&[d.kinetic_energy]),
+        ops: counted(&d.graph, &[d.kinetic_energy]),
         lines: function_lines(code, "kinetic_energy"),
     });
     functions.push(FunctionStats {
         name: "mass_matrix_dot",
-        ops: d.graph.op_counts(&d.mass_matrix_dot),
+        ops: counted(&d.graph, &d.mass_matrix_dot),
         lines: function_lines(code, "mass_matrix_dot"),
     });
     // friction(q̇) is written directly: per coordinate a product for the damping and, per
@@ -156,13 +164,13 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
     });
     functions.push(FunctionStats {
         name: "coriolis_matrix",
-        ops: d.graph.op_counts(&d.coriolis_matrix),
+        ops: counted(&d.graph, &d.coriolis_matrix),
         lines: function_lines(code, "coriolis_matrix"),
     });
     let both: Vec<ExprId> = d.mass_matrix.iter().chain(&d.bias).copied().collect();
     functions.push(FunctionStats {
         name: "mass_matrix_and_bias",
-        ops: d.graph.op_counts(&both),
+        ops: counted(&d.graph, &both),
         lines: function_lines(code, "mass_matrix_and_bias"),
     });
     // The unrolled part of constrained forward dynamics: the factor of M and the bias (the
@@ -176,7 +184,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         .collect();
     functions.push(FunctionStats {
         name: "constrained_forward_dynamics",
-        ops: d.graph.op_counts(&factor),
+        ops: counted(&d.graph, &factor),
         lines: function_lines(code, "constrained_forward_dynamics"),
     });
     let t = &generated.task_space;
@@ -197,7 +205,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
     ] {
         functions.push(FunctionStats {
             name,
-            ops: t.graph.op_counts(&roots),
+            ops: counted(&t.graph, &roots),
             lines: function_lines(code, name),
         });
     }
@@ -230,7 +238,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ] {
             functions.push(FunctionStats {
                 name,
-                ops: x.graph.op_counts(&roots),
+                ops: counted(&x.graph, &roots),
                 lines: function_lines(code, name),
             });
         }
@@ -245,7 +253,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
     ] {
         functions.push(FunctionStats {
             name,
-            ops: d.graph.op_counts(roots),
+            ops: counted(&d.graph, roots),
             lines: function_lines(code, name),
         });
     }
@@ -258,7 +266,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ] {
             functions.push(FunctionStats {
                 name,
-                ops: r.graph.op_counts(&roots),
+                ops: counted(&r.graph, &roots),
                 lines: function_lines(code, name),
             });
         }
@@ -284,7 +292,7 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
     }
     functions.extend(kinematics.iter().map(|(name, roots)| FunctionStats {
         name,
-        ops: k.graph.op_counts(roots),
+        ops: counted(&k.graph, roots),
         lines: function_lines(code, name),
     }));
     // Only what was generated (a `functions` selection leaves some out).

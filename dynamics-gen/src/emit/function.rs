@@ -395,10 +395,12 @@ enum Binding {
 }
 
 impl FunctionBody<'_> {
-    /// The body of the function, as a block's statements: its sums re-associated for
-    /// instruction-level parallelism first ([`crate::expr::reassociate`]).
+    /// The body of the function, as a block's statements: its nodes that equal a multiple of
+    /// another merged ([`crate::expr::equivalent`]), then its sums re-associated for
+    /// instruction-level parallelism ([`crate::expr::reassociate`]).
     pub fn tokens(&self) -> TokenStream {
-        let (graph, outputs) = reassociate::reassociate(self.graph, self.outputs);
+        let (merged, outputs) = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);
+        let (graph, outputs) = reassociate::reassociate(&merged, &outputs);
         let ready = reassociate::ready_times(&graph);
         FunctionBody {
             graph: &graph,

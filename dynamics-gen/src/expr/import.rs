@@ -44,7 +44,7 @@ impl ExprGraph {
 
     /// `node` re-inserted through the constructors, its operands mapped by `map` and its
     /// input (if a leaf) by `leaf`.
-    fn rebuild(
+    pub(super) fn rebuild(
         &mut self,
         node: Node,
         map: &[ExprId],

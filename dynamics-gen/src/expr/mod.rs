@@ -52,6 +52,7 @@
 mod constant;
 mod diff;
 mod dot;
+pub mod equivalent;
 mod eval;
 mod graph;
 mod import;

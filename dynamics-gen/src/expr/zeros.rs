@@ -165,36 +165,10 @@ impl ExprGraph {
                 if !live[i] {
                     continue;
                 }
-                let v = |id: ExprId| val[id.index()];
-                let m = |id: ExprId| mag[id.index()];
-                let (vi, mi) = match *node {
-                    Node::Const(c) => (c.value(), c.value().abs()),
-                    Node::Input(x) => {
-                        let (lo, hi) = range(x);
-                        let s = rng.uniform(lo, hi);
-                        (s, s.abs())
-                    }
-                    Node::Neg(a) => (-v(a), m(a)),
-                    Node::Add(a, b) => (v(a) + v(b), m(a) + m(b)),
-                    Node::Sub(a, b) => (v(a) - v(b), m(a) + m(b)),
-                    Node::Mul(a, b) => (v(a) * v(b), v(a).abs() * m(b) + m(a) * v(b).abs()),
-                    Node::Div(a, b) => {
-                        let q = v(a) / v(b);
-                        (q, (m(a) + q.abs() * m(b)) / v(b).abs())
-                    }
-                    Node::Sqrt(a) => {
-                        let r = v(a).sqrt();
-                        (r, m(a) / (2.0 * r))
-                    }
-                    Node::Sin(a) => {
-                        let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
-                        (s, c.abs() * m(a) + s.abs())
-                    }
-                    Node::Cos(a) => {
-                        let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
-                        (c, s.abs() * m(a) + c.abs())
-                    }
-                };
+                let (vi, mi) = value_and_magnitude(node, &val, &mag, &mut |x| {
+                    let (lo, hi) = range(x);
+                    rng.uniform(lo, hi)
+                });
                 val[i] = vi;
                 mag[i] = mi;
                 if zero[i] {
@@ -260,6 +234,45 @@ impl ExprGraph {
             .map(|r| r.iter().map(|id| map[id.index()]).collect())
             .collect();
         (g, roots)
+    }
+}
+
+/// The value of `node` and its magnitude `m` (module documentation), its operands' values
+/// and magnitudes in `val` and `mag` (by node index), an input's value drawn by `input`.
+pub(super) fn value_and_magnitude(
+    node: &Node,
+    val: &[f64],
+    mag: &[f64],
+    input: &mut dyn FnMut(Input) -> f64,
+) -> (f64, f64) {
+    let v = |id: ExprId| val[id.index()];
+    let m = |id: ExprId| mag[id.index()];
+    match *node {
+        Node::Const(c) => (c.value(), c.value().abs()),
+        Node::Input(x) => {
+            let s = input(x);
+            (s, s.abs())
+        }
+        Node::Neg(a) => (-v(a), m(a)),
+        Node::Add(a, b) => (v(a) + v(b), m(a) + m(b)),
+        Node::Sub(a, b) => (v(a) - v(b), m(a) + m(b)),
+        Node::Mul(a, b) => (v(a) * v(b), v(a).abs() * m(b) + m(a) * v(b).abs()),
+        Node::Div(a, b) => {
+            let q = v(a) / v(b);
+            (q, (m(a) + q.abs() * m(b)) / v(b).abs())
+        }
+        Node::Sqrt(a) => {
+            let r = v(a).sqrt();
+            (r, m(a) / (2.0 * r))
+        }
+        Node::Sin(a) => {
+            let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
+            (s, c.abs() * m(a) + s.abs())
+        }
+        Node::Cos(a) => {
+            let (s, c) = (libm::sin(v(a)), libm::cos(v(a)));
+            (c, s.abs() * m(a) + c.abs())
+        }
     }
 }
 
