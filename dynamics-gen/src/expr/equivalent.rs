@@ -7,9 +7,9 @@
 //! `s₀ (0.425 s₀ c₁) + c₀ (0.425 c₀ c₁)`, which is `0.425 c₁`, and the composite inertias of
 //! the mass matrix and the Coriolis terms have many such sums. [`merge_equivalent`] finds,
 //! for one function's live nodes, the pairs `v = k·w` with `w` an earlier node (an input or a
-//! constant included: `s² + c²` is `1`) and `k` a constant, and rebuilds the function with `v` replaced by `w`, `−w` or `k·w`: of the
-//! equivalent nodes, the one ready soonest under [`super::reassociate`]'s latency model, and
-//! only if `k·w` is ready no later than `v` itself.
+//! constant included: `s² + c²` is `1`) and `k` a constant, and rebuilds the function with
+//! `v` replaced by `w`, `−w` or `k·w`: of the equivalent nodes, the one ready soonest under
+//! [`super::reassociate`]'s latency model, and only if `k·w` is ready no later than `v`.
 //!
 //! # Test
 //!
@@ -44,10 +44,11 @@
 //! Why a threshold: a merge moves values' lives (`w` read where `v` was), and the register
 //! allocator's spills move with them. Measured on the default x86-64 target's AVX2 copies
 //! (instructions in the machine code, old → merged): the UR5's mass matrix (−6.7 % of its
-//! operations) 232 → 209, Coriolis (−8.5 %) 307 → 265, forward dynamics (−6.2 %) 644 → 592,
-//! the Panda's mass matrix (−6.0 %) 578 → 525; but a general-geometry 7-joint arm's mass
-//! matrix (−3.4 %) 901 → 975 and its inverse dynamics (−0.5 %) 1,007 → 1,016. Savings of a
-//! few percent are within what any change of a body's schedule moves its machine code by.
+//! operations) 232 → 209, Coriolis (−7.3 %) 307 → 277, forward dynamics (−5.7 %) 644 → 603,
+//! the Panda's mass matrix (−6.0 %) 578 → 525; but, merged without the threshold, a
+//! general-geometry 7-joint arm's mass matrix (−3.4 %) 901 → 975 and its inverse dynamics
+//! (−0.5 %) 1,007 → 1,016. Savings of a few percent are within what any change of a body's
+//! schedule moves its machine code by (`docs/performance.md`).
 
 use super::reassociate::{latency, ready_times};
 use super::zeros::{value_and_magnitude, SplitMix};
