@@ -3,9 +3,10 @@
 //! The counts are those of the expression graph live from a function's outputs, every
 //! shared node counted once ([`crate::expr::ExprGraph::op_counts`]), after the merging of
 //! equivalent nodes the emitter applies ([`crate::expr::equivalent`]): exactly the
-//! arithmetic the generated straight-line code performs. For comparison, Featherstone's commonly cited
-//! count for the recursive Newton–Euler algorithm on an n-joint chain of revolute joints is
-//! `93n − 69` multiplications and `81n − 66` additions ([`featherstone_rnea`]).
+//! arithmetic the generated straight-line code performs. For comparison, Featherstone's
+//! commonly cited count for the recursive Newton–Euler algorithm on an n-joint chain of
+//! revolute joints is `93n − 69` multiplications and `81n − 66` additions
+//! ([`featherstone_rnea`]).
 
 use crate::emit::Generated;
 use crate::error::Error;
