@@ -102,8 +102,10 @@ pub fn featherstone_rnea(n: usize) -> (usize, usize) {
 /// The operation counts of the function `roots` of `g` as it is emitted: after
 /// [`crate::expr::equivalent::merge_equivalent`].
 fn counted(g: &crate::expr::ExprGraph, roots: &[ExprId]) -> OpCounts {
-    let (merged, roots) = crate::expr::equivalent::merge_equivalent(g, roots);
-    merged.op_counts(&roots)
+    match crate::expr::equivalent::merge_equivalent(g, roots) {
+        Some((merged, roots)) => merged.op_counts(&roots),
+        None => g.op_counts(roots),
+    }
 }
 
 /// The statistics of `generated`, with line counts taken from `code`, the formatted code of

@@ -399,8 +399,11 @@ impl FunctionBody<'_> {
     /// another merged ([`crate::expr::equivalent`]), then its sums re-associated for
     /// instruction-level parallelism ([`crate::expr::reassociate`]).
     pub fn tokens(&self) -> TokenStream {
-        let (merged, outputs) = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);
-        let (graph, outputs) = reassociate::reassociate(&merged, &outputs);
+        let merged = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);
+        let (graph, outputs) = match &merged {
+            Some((g, outputs)) => reassociate::reassociate(g, outputs),
+            None => reassociate::reassociate(self.graph, self.outputs),
+        };
         let ready = reassociate::ready_times(&graph);
         FunctionBody {
             graph: &graph,
