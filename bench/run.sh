@@ -11,7 +11,8 @@
 # into target/bench-native; 0: for the toolchain's default target CPU, into target/bench-default),
 # CALLGRIND=1 (with NATIVE=0: also instructions per call of both sides under valgrind's callgrind, which
 # decodes AVX2 and FMA but not AVX-512: ours runs its AVX2 copy there, and Pinocchio is compiled a second time
-# for x86-64-v3, AVX2 and FMA, to match).
+# for x86-64-v3, AVX2 and FMA, to match), SIDE_BY_SIDE (rounds of the side-by-side timing of ours against the
+# reference, default 21; 0: off).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -93,7 +94,14 @@ echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', CARGO_TARGET_DIR=$CARGO_TARGET_DIR"
 # tests/build.rs, every robot this kit times among them): a third of the build time.
 FEATURES=()
 [ "${SAMPLE:-0}" = 1 ] && FEATURES=(--features sample-robots)
-(cd "$ROOT" && cargo bench -p dynamics-tests "${FEATURES[@]}" --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER")
+# SIDE_BY_SIDE (rounds, default 21; 0: off): the benchmark also times each generated function
+# and its reference in alternating blocks of about a millisecond (`side_by_side` in
+# tests/benches/dynamics.rs), for table 4b's second ratio.
+export SIDE_BY_SIDE=${SIDE_BY_SIDE:-21}
+SIDE_BY_SIDE_ROBOTS=$(for r in $ROBOTS; do printf '%s ' "${r%+ff}"; done)
+export SIDE_BY_SIDE_ROBOTS
+(cd "$ROOT" && cargo bench -p dynamics-tests "${FEATURES[@]}" --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER") |
+  tee "$CACHE/cargo_bench.txt"
 
 # 3. Side by side: criterion medians of this run only (estimates.json newer than START).
 CRIT=$CARGO_TARGET_DIR/criterion
@@ -116,10 +124,16 @@ for line in open(pin_file):
     cell = f"{ns:8.1f} {float(med) / ns:5.1f}x" if ns else f"{'-':>8} {'-':>6}"
     print(f"{robot:<16} {algo:<19} {float(med):8.1f} {ours[algo]:<33} {cell}")
 EOF
-# 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run.
-"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
+# 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run
+# (criterion's two rows, and the side-by-side gain: median and quartiles of the rounds).
+"$VENV/bin/python" - "$CRIT" "$START" "$CACHE/cargo_bench.txt" $ROBOTS <<'EOF'
 import json, os, sys
-crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
+crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[4:]]
+side = {}
+for line in open(sys.argv[3]):
+    f = line.rstrip("\n").split("\t")
+    if f[0] == "side-by-side" and len(f) == 8:
+        side[(f[1], f[2])] = [float(x) for x in f[3:]]
 def median(robot, name):
     est = os.path.join(crit, robot, "generated_" + name, "new", "estimates.json")
     if os.path.exists(est) and os.path.getmtime(est) >= start:
@@ -129,9 +143,13 @@ for robot in robots:
     for f in ["inverse_dynamics", "forward_dynamics", "mass_matrix", "gravity"]:
         single, batch = median(robot, f + "_x8_single"), median(robot, f + "_x8_batch")
         if single and batch:
-            rows.append(f"{robot:<16} {f:<18} {single / 8:9.1f} {batch / 8:9.1f} {single / batch:6.2f}x")
+            s = side.get((robot, f + "_x8"))
+            cell = f"{s[1] / 8:9.1f} {s[0] / 8:9.1f} {s[2]:6.2f}x {s[3]:4.2f}-{s[4]:.2f}x" if s else ""
+            rows.append(f"{robot:<16} {f:<18} {single / 8:9.1f} {batch / 8:9.1f} {single / batch:6.2f}x  {cell}")
 if rows:
-    print(f"\n{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}")
+    print(f"\n{'':<35} {'criterion':^27}  {'side by side (median, quartiles of rounds)':^40}")
+    print(f"{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}  "
+          f"{'single/st':>9} {'batch/st':>9} {'gain':>7} {'quartiles':>11}")
     print("\n".join(rows))
 EOF
 
@@ -139,9 +157,16 @@ EOF
 # the generated code, this run: every function criterion timed on both sides (on the arms, all
 # that have a counterpart: `bench_every!` in tests/benches/dynamics.rs; the derivatives' reference
 # is central differences of the reference, as the tests compare them).
-"$VENV/bin/python" - "$CRIT" "$START" $ROBOTS <<'EOF'
+# Beside criterion's ratio, the side-by-side one (SIDE_BY_SIDE rounds of alternating blocks): its
+# median over the rounds and the rounds' quartiles.
+"$VENV/bin/python" - "$CRIT" "$START" "$CACHE/cargo_bench.txt" $ROBOTS <<'EOF'
 import json, os, sys
-crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[3:]]
+crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[4:]]
+side = {}
+for line in open(sys.argv[3]):
+    f = line.rstrip("\n").split("\t")
+    if f[0] == "side-by-side" and len(f) == 8:
+        side[(f[1], f[2])] = [float(x) for x in f[3:]]
 def median(robot, name):
     est = os.path.join(crit, robot, name, "new", "estimates.json")
     if os.path.exists(est) and os.path.getmtime(est) >= start:
@@ -153,9 +178,13 @@ for robot in robots:
     for f in names:
         ref, gen = median(robot, "reference_" + f), median(robot, "generated_" + f)
         if ref and gen:
-            rows.append(f"{robot:<16} {f:<34} {ref:10.1f} {gen:9.1f} {ref / gen:6.1f}x")
+            s = side.get((robot, f))
+            cell = (f"{s[1]:10.1f} {s[0]:9.1f} {s[2]:6.1f}x {s[3]:5.1f}-{s[4]:.1f}x" if s else "")
+            rows.append(f"{robot:<16} {f:<34} {ref:10.1f} {gen:9.1f} {ref / gen:6.1f}x  {cell}")
 if rows:
-    print(f"\n{'robot':<16} {'function':<34} {'reference':>10} {'ours':>9} {'ratio':>7}")
+    print(f"\n{'':<51} {'criterion':^27}  {'side by side (median, quartiles of rounds)':^40}")
+    print(f"{'robot':<16} {'function':<34} {'reference':>10} {'ours':>9} {'ratio':>7}  "
+          f"{'reference':>10} {'ours':>9} {'ratio':>7} {'quartiles':>11}")
     print("\n".join(rows))
 # 4c. f32 beside f64, generated code only (`bench_f32!`): the same robot generated with scalar f32
 # on the same states rounded to f32, and for the UR5 its f32 `no_std` code (no CPU dispatch: the

@@ -11,6 +11,116 @@ use dynamics_tests::bench::{states, STATES};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector6};
 use std::hint::black_box;
 
+/// Times `ours` and `reference` side by side, in alternating blocks of about a millisecond
+/// each (the first of the two swapped every round), when the environment's `SIDE_BY_SIDE` is a
+/// number of rounds and `SIDE_BY_SIDE_ROBOTS` lists `label` (`bench/run.sh` sets both): on a
+/// shared machine whose speed drifts over seconds, two criterion rows measured a few seconds
+/// apart can move by 2× against each other, while a ratio taken within one round of a few
+/// milliseconds does not. Each closure gets the index of the state to use (cycling through
+/// [`STATES`]). Prints one tab-separated line, `side-by-side`, the label, `name`, the medians
+/// over the rounds of ours and the reference (ns per call), and the median, first and third
+/// quartiles of the rounds' ratios (reference ÷ ours).
+fn side_by_side<A, B>(
+    label: &str,
+    name: &str,
+    mut ours: impl FnMut(usize) -> A,
+    mut reference: impl FnMut(usize) -> B,
+) {
+    let rounds = std::env::var("SIDE_BY_SIDE")
+        .ok()
+        .and_then(|r| r.parse::<usize>().ok());
+    let robots = std::env::var("SIDE_BY_SIDE_ROBOTS").unwrap_or_default();
+    let Some(rounds) = rounds.filter(|&r| r > 0) else {
+        return;
+    };
+    if !robots.split_whitespace().any(|r| r == label) {
+        return;
+    }
+    // ns per call of `calls` calls, cycling through the states, after `warm` calls untimed
+    // (the other side's block has just run).
+    fn block<O>(warm: usize, calls: usize, f: &mut impl FnMut(usize) -> O) -> f64 {
+        for i in 0..warm {
+            black_box(f(i & (STATES - 1)));
+        }
+        let start = std::time::Instant::now();
+        for i in 0..calls {
+            black_box(f(i & (STATES - 1)));
+        }
+        start.elapsed().as_nanos() as f64 / calls as f64
+    }
+    // Calls per block: about a millisecond's worth (this also warms both up).
+    fn calls<O>(f: &mut impl FnMut(usize) -> O) -> usize {
+        let mut n = 1;
+        while n < 1 << 20 && block(0, n, f) * (n as f64) < 1e6 {
+            n *= 2;
+        }
+        n
+    }
+    let (n_ours, n_reference) = (calls(&mut ours), calls(&mut reference));
+    let (mut t_ours, mut t_reference, mut ratios) = (vec![], vec![], vec![]);
+    for round in 0..rounds {
+        let (a, b) = if round % 2 == 0 {
+            let a = block(n_ours / 4, n_ours, &mut ours);
+            (a, block(n_reference / 4, n_reference, &mut reference))
+        } else {
+            let b = block(n_reference / 4, n_reference, &mut reference);
+            (block(n_ours / 4, n_ours, &mut ours), b)
+        };
+        t_ours.push(a);
+        t_reference.push(b);
+        ratios.push(b / a);
+    }
+    for v in [&mut t_ours, &mut t_reference, &mut ratios] {
+        v.sort_by(f64::total_cmp);
+    }
+    let median = |v: &[f64]| v[v.len() / 2];
+    println!(
+        "side-by-side\t{label}\t{name}\t{:.1}\t{:.1}\t{:.2}\t{:.2}\t{:.2}",
+        median(&t_ours),
+        median(&t_reference),
+        median(&ratios),
+        ratios[rounds / 4],
+        ratios[(3 * rounds) / 4],
+    );
+}
+
+/// Registers `generated/<name>` and `reference/<name>` with criterion, each cycling through
+/// `states`, and times the two [`side_by_side`] too; with `elsewhere`, the generated row is
+/// registered by another macro (`bench_robot!`, `bench_derivatives!`) and only the reference
+/// row here.
+macro_rules! pair_rows {
+    ($group:ident, $states:ident, $label:expr, $name:literal, |$s:ident| $gen:expr, $reference:expr) => {
+        $group.bench_function(concat!("generated/", $name), |b| {
+            cycled(b, &$states, |$s| $gen)
+        });
+        pair_rows!(
+            $group,
+            $states,
+            $label,
+            $name,
+            elsewhere | $s | $gen,
+            $reference
+        );
+    };
+    ($group:ident, $states:ident, $label:expr, $name:literal, elsewhere |$s:ident| $gen:expr, $reference:expr) => {
+        $group.bench_function(concat!("reference/", $name), |b| {
+            cycled(b, &$states, |$s| $reference)
+        });
+        side_by_side(
+            $label,
+            $name,
+            |i| {
+                let $s = black_box(&$states[i]);
+                $gen
+            },
+            |i| {
+                let $s = black_box(&$states[i]);
+                $reference
+            },
+        );
+    };
+}
+
 /// Times `f` on the states in turn, one per iteration (each through `black_box`).
 fn cycled<S, O>(b: &mut criterion::Bencher<'_>, states: &[S], mut f: impl FnMut(&S) -> O) {
     assert_eq!(states.len(), STATES);
@@ -31,53 +141,49 @@ macro_rules! bench_robot {
         let g = robot.gravity;
         let z = Vector6::zeros();
         let mut group = $c.benchmark_group($label);
-        group.bench_function("generated/inverse_dynamics", |b| {
-            cycled(b, &states, |s| {
-                Gen.inverse_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.qdd))
-            })
-        });
-        group.bench_function("reference/inverse_dynamics", |b| {
-            cycled(b, &states, |s| {
-                dynamics_reference::inverse_dynamics(
-                    &robot,
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.qdd.as_slice()),
-                    &g,
-                    &z,
-                )
-            })
-        });
-        group.bench_function("generated/mass_matrix", |b| {
-            cycled(b, &states, |s| Gen.mass_matrix(black_box(&s.q)))
-        });
-        group.bench_function("reference/mass_matrix", |b| {
-            cycled(b, &states, |s| {
-                dynamics_reference::mass_matrix(&robot, black_box(s.q.as_slice()))
-            })
-        });
-        group.bench_function("generated/gravity", |b| {
-            cycled(b, &states, |s| Gen.gravity(black_box(&s.q)))
-        });
-        group.bench_function("reference/gravity", |b| {
-            cycled(b, &states, |s| {
-                dynamics_reference::gravity_forces(&robot, black_box(s.q.as_slice()), &g)
-            })
-        });
-        group.bench_function("generated/coriolis", |b| {
-            cycled(b, &states, |s| {
-                Gen.coriolis(black_box(&s.q), black_box(&s.qd))
-            })
-        });
-        group.bench_function("reference/coriolis", |b| {
-            cycled(b, &states, |s| {
-                dynamics_reference::vel_quadratic_forces(
-                    &robot,
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                )
-            })
-        });
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "inverse_dynamics",
+            |s| Gen.inverse_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.qdd)),
+            dynamics_reference::inverse_dynamics(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.qdd.as_slice()),
+                &g,
+                &z,
+            )
+        );
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "mass_matrix",
+            |s| Gen.mass_matrix(black_box(&s.q)),
+            dynamics_reference::mass_matrix(&robot, black_box(s.q.as_slice()))
+        );
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "gravity",
+            |s| Gen.gravity(black_box(&s.q)),
+            dynamics_reference::gravity_forces(&robot, black_box(s.q.as_slice()), &g)
+        );
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "coriolis",
+            |s| Gen.coriolis(black_box(&s.q), black_box(&s.qd)),
+            dynamics_reference::vel_quadratic_forces(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+            )
+        );
         // One call for M and h = c + g, against two (M, then h as τ at q̈ = 0).
         let zero = SVector::<f64, $nv>::zeros();
         group.bench_function("generated/mass_matrix_and_bias", |b| {
@@ -93,23 +199,21 @@ macro_rules! bench_robot {
                 )
             })
         });
-        group.bench_function("generated/forward_dynamics", |b| {
-            cycled(b, &states, |s| {
-                Gen.forward_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.tau))
-            })
-        });
-        group.bench_function("reference/forward_dynamics", |b| {
-            cycled(b, &states, |s| {
-                dynamics_reference::forward_dynamics(
-                    &robot,
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.tau.as_slice()),
-                    &g,
-                    &z,
-                )
-            })
-        });
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "forward_dynamics",
+            |s| Gen.forward_dynamics(black_box(&s.q), black_box(&s.qd), black_box(&s.tau)),
+            dynamics_reference::forward_dynamics(
+                &robot,
+                black_box(s.q.as_slice()),
+                black_box(s.qd.as_slice()),
+                black_box(s.tau.as_slice()),
+                &g,
+                &z,
+            )
+        );
         group.finish();
     }};
 }
@@ -230,15 +334,17 @@ macro_rules! bench_every {
         let mut group = $c.benchmark_group($label);
         macro_rules! pair {
             ($name:literal, |$s:ident| $gen:expr, $reference:expr) => {
-                group.bench_function(concat!("generated/", $name), |b| {
-                    cycled(b, &states, |$s| $gen)
-                });
-                pair!($name, |$s| $reference);
+                pair_rows!(group, states, $label, $name, |$s| $gen, $reference);
             };
-            ($name:literal, |$s:ident| $reference:expr) => {
-                group.bench_function(concat!("reference/", $name), |b| {
-                    cycled(b, &states, |$s| $reference)
-                });
+            ($name:literal, elsewhere |$s:ident| $gen:expr, $reference:expr) => {
+                pair_rows!(
+                    group,
+                    states,
+                    $label,
+                    $name,
+                    elsewhere | $s | $gen,
+                    $reference
+                );
             };
         }
         pair!(
@@ -388,19 +494,31 @@ macro_rules! bench_every {
                 &g
             )
         );
-        pair!("mass_matrix_and_bias", |s| {
-            let (q, qd) = (black_box(s.q.as_slice()), black_box(s.qd.as_slice()));
-            (
-                dynamics_reference::mass_matrix(&robot, q),
-                id(q, qd, &[0.0; $n]),
-            )
-        });
-        pair!("mass_matrix_inverse", |s| minv(black_box(s.q.as_slice())));
-        pair!("gravity_derivative", |s| {
-            central(black_box(s.q.as_slice()), |q| {
-                dynamics_reference::gravity_forces(&robot, q, &g)
-            })
-        });
+        pair!(
+            "mass_matrix_and_bias",
+            elsewhere | s | Gen.mass_matrix_and_bias(black_box(&s.q), black_box(&s.qd)),
+            {
+                let (q, qd) = (black_box(s.q.as_slice()), black_box(s.qd.as_slice()));
+                (
+                    dynamics_reference::mass_matrix(&robot, q),
+                    id(q, qd, &[0.0; $n]),
+                )
+            }
+        );
+        pair!(
+            "mass_matrix_inverse",
+            elsewhere | s | Gen.mass_matrix_inverse(black_box(&s.q)),
+            minv(black_box(s.q.as_slice()))
+        );
+        pair!(
+            "gravity_derivative",
+            elsewhere | s | Gen.gravity_derivative(black_box(&s.q)),
+            {
+                central(black_box(s.q.as_slice()), |q| {
+                    dynamics_reference::gravity_forces(&robot, q, &g)
+                })
+            }
+        );
         let d_id = |q: &[f64], qd: &[f64], qdd: &[f64]| {
             (
                 central(q, |q| id(q, qd, qdd)),
@@ -414,36 +532,76 @@ macro_rules! bench_every {
                 minv(q),
             )
         };
-        pair!("inverse_dynamics_derivatives", |s| {
-            d_id(
-                black_box(s.q.as_slice()),
-                black_box(s.qd.as_slice()),
-                black_box(s.qdd.as_slice()),
-            )
-        });
-        pair!("inverse_dynamics_with_derivatives", |s| {
-            let (q, qd, qdd) = (
-                black_box(s.q.as_slice()),
-                black_box(s.qd.as_slice()),
-                black_box(s.qdd.as_slice()),
-            );
-            (id(q, qd, qdd), d_id(q, qd, qdd))
-        });
-        pair!("forward_dynamics_derivatives", |s| {
-            d_fd(
-                black_box(s.q.as_slice()),
-                black_box(s.qd.as_slice()),
-                black_box(s.tau.as_slice()),
-            )
-        });
-        pair!("forward_dynamics_with_derivatives", |s| {
-            let (q, qd, tau) = (
-                black_box(s.q.as_slice()),
-                black_box(s.qd.as_slice()),
-                black_box(s.tau.as_slice()),
-            );
-            (fd(q, qd, tau), d_fd(q, qd, tau))
-        });
+        pair!(
+            "inverse_dynamics_derivatives",
+            elsewhere
+                | s
+                | Gen.inverse_dynamics_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.qdd)
+                ),
+            {
+                d_id(
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.qdd.as_slice()),
+                )
+            }
+        );
+        pair!(
+            "inverse_dynamics_with_derivatives",
+            elsewhere
+                | s
+                | Gen.inverse_dynamics_with_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.qdd)
+                ),
+            {
+                let (q, qd, qdd) = (
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.qdd.as_slice()),
+                );
+                (id(q, qd, qdd), d_id(q, qd, qdd))
+            }
+        );
+        pair!(
+            "forward_dynamics_derivatives",
+            elsewhere
+                | s
+                | Gen.forward_dynamics_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.tau)
+                ),
+            {
+                d_fd(
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.tau.as_slice()),
+                )
+            }
+        );
+        pair!(
+            "forward_dynamics_with_derivatives",
+            elsewhere
+                | s
+                | Gen.forward_dynamics_with_derivatives(
+                    black_box(&s.q),
+                    black_box(&s.qd),
+                    black_box(&s.tau)
+                ),
+            {
+                let (q, qd, tau) = (
+                    black_box(s.q.as_slice()),
+                    black_box(s.qd.as_slice()),
+                    black_box(s.tau.as_slice()),
+                );
+                (fd(q, qd, tau), d_fd(q, qd, tau))
+            }
+        );
         group.finish();
     }};
 }
@@ -523,48 +681,49 @@ macro_rules! bench_batch {
         });
         let tau = Gen.inverse_dynamics_batch(&q, &qd, &qdd);
         let mut group = $c.benchmark_group($label);
-        group.bench_function("generated/inverse_dynamics_x8_batch", |b| {
-            b.iter(|| Gen.inverse_dynamics_batch(black_box(&q), black_box(&qd), black_box(&qdd)))
-        });
-        group.bench_function("generated/inverse_dynamics_x8_single", |b| {
-            b.iter(|| {
+        // `<name>_x8_batch` and `<name>_x8_single`, and the two [`side_by_side`] (the batch as
+        // "ours", the single calls as "reference": the ratio is the batch's gain per state).
+        macro_rules! rows {
+            ($name:literal, $batch:expr, $single:expr) => {
+                group.bench_function(concat!("generated/", $name, "_x8_batch"), |b| {
+                    b.iter(|| $batch)
+                });
+                group.bench_function(concat!("generated/", $name, "_x8_single"), |b| {
+                    b.iter(|| $single)
+                });
+                side_by_side($label, concat!($name, "_x8"), |_| $batch, |_| $single);
+            };
+        }
+        rows!(
+            "inverse_dynamics",
+            Gen.inverse_dynamics_batch(black_box(&q), black_box(&qd), black_box(&qdd)),
+            {
                 let (q, qd, qdd) = (black_box(&q), black_box(&qd), black_box(&qdd));
                 let out: [SVector<f64, $nv>; B] =
                     std::array::from_fn(|l| Gen.inverse_dynamics(&q[l], &qd[l], &qdd[l]));
                 out
-            })
-        });
-        group.bench_function("generated/forward_dynamics_x8_batch", |b| {
-            b.iter(|| Gen.forward_dynamics_batch(black_box(&q), black_box(&qd), black_box(&tau)))
-        });
-        group.bench_function("generated/forward_dynamics_x8_single", |b| {
-            b.iter(|| {
+            }
+        );
+        rows!(
+            "forward_dynamics",
+            Gen.forward_dynamics_batch(black_box(&q), black_box(&qd), black_box(&tau)),
+            {
                 let (q, qd, tau) = (black_box(&q), black_box(&qd), black_box(&tau));
                 let out: [SVector<f64, $nv>; B] =
                     std::array::from_fn(|l| Gen.forward_dynamics(&q[l], &qd[l], &tau[l]));
                 out
-            })
+            }
+        );
+        rows!("mass_matrix", Gen.mass_matrix_batch(black_box(&q)), {
+            let q = black_box(&q);
+            let out: [nalgebra::SMatrix<f64, $nv, $nv>; B] =
+                std::array::from_fn(|l| Gen.mass_matrix(&q[l]));
+            out
         });
-        group.bench_function("generated/mass_matrix_x8_batch", |b| {
-            b.iter(|| Gen.mass_matrix_batch(black_box(&q)))
-        });
-        group.bench_function("generated/mass_matrix_x8_single", |b| {
-            b.iter(|| {
-                let q = black_box(&q);
-                let out: [nalgebra::SMatrix<f64, $nv, $nv>; B] =
-                    std::array::from_fn(|l| Gen.mass_matrix(&q[l]));
-                out
-            })
-        });
-        group.bench_function("generated/gravity_x8_batch", |b| {
-            b.iter(|| Gen.gravity_batch(black_box(&q)))
-        });
-        group.bench_function("generated/gravity_x8_single", |b| {
-            b.iter(|| {
-                let q = black_box(&q);
-                let out: [SVector<f64, $nv>; B] = std::array::from_fn(|l| Gen.gravity(&q[l]));
-                out
-            })
+        rows!("gravity", Gen.gravity_batch(black_box(&q)), {
+            let q = black_box(&q);
+            let out: [SVector<f64, $nv>; B] = std::array::from_fn(|l| Gen.gravity(&q[l]));
+            out
         });
         group.finish();
     }};
