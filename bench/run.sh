@@ -12,7 +12,8 @@
 # CALLGRIND=1 (with NATIVE=0: also instructions per call of both sides under valgrind's callgrind, which
 # decodes AVX2 and FMA but not AVX-512: ours runs its AVX2 copy there, and Pinocchio is compiled a second time
 # for x86-64-v3, AVX2 and FMA, to match), SIDE_BY_SIDE (rounds of the side-by-side timing of ours against the
-# reference, default 21; 0: off).
+# reference, default 21; 0: off), PIN_ROUNDS (rounds of Pinocchio and ours interleaved, table 3b; default 7,
+# 0: off).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -124,6 +125,49 @@ for line in open(pin_file):
     cell = f"{ns:8.1f} {float(med) / ns:5.1f}x" if ns else f"{'-':>8} {'-':>6}"
     print(f"{robot:<16} {algo:<19} {float(med):8.1f} {ours[algo]:<33} {cell}")
 EOF
+# 3b. Pinocchio and ours interleaved: PIN_ROUNDS rounds (default 7; 0: off), each Pinocchio's benchmark
+# (--reps 1) on one robot and then ours on the same robot and algorithms, `tests/examples/calls.rs
+# --time 1` (a warm-up round, then CALLS calls timed), one process per algorithm; the median and
+# quartiles of the rounds' ratios. Table 3 compares Pinocchio's run with criterion's minutes later.
+if [ "${PIN_ROUNDS:-7}" -gt 0 ]; then
+  (cd "$ROOT" && cargo build -q --release -p dynamics-tests "${FEATURES[@]}" --example calls)
+  EX=$CARGO_TARGET_DIR/release/examples/calls
+  : > "$CACHE/interleaved.txt"
+  for i in "${!NAMES[@]}"; do
+    name=${NAMES[$i]}; model=${ARGS[$i]}
+    for round in $(seq "${PIN_ROUNDS:-7}"); do
+      "$BIN" --calls "$CALLS" --reps 1 "$model" | sed "s/^/pin $round /" >> "$CACHE/interleaved.txt"
+      for algo in rnea nle crba gravity aba rnea_derivatives aba_derivatives minverse gravity_derivatives; do
+        { "$EX" "$name" "$algo" "$CALLS" --time 1 2>/dev/null || true; } | sed "s/^/ours $round /" >> "$CACHE/interleaved.txt"
+      done
+    done
+  done
+  "$VENV/bin/python" - "$CACHE/interleaved.txt" <<'EOF'
+import sys
+pin, ours, pairs = {}, {}, []
+for line in open(sys.argv[1]):
+    f = line.split()
+    if f[0] == "pin" and len(f) == 7:
+        pin[(f[2], f[4], f[1])] = float(f[5])
+        if (f[2], f[4]) not in pairs:
+            pairs.append((f[2], f[4]))
+    elif f[0] == "ours" and len(f) == 5:
+        ours[(f[2], f[3], f[1])] = float(f[4])
+med = lambda v: sorted(v)[len(v) // 2]
+rows = []
+for robot, algo in pairs:
+    rounds = [r for (b, a, r) in pin if (b, a) == (robot, algo) and (b, a, r) in ours]
+    if not rounds:
+        continue
+    ratios = sorted(pin[(robot, algo, r)] / ours[(robot, algo, r)] for r in rounds)
+    p, o, n = med([pin[(robot, algo, r)] for r in rounds]), med([ours[(robot, algo, r)] for r in rounds]), len(ratios)
+    rows.append(f"{robot:<16} {algo:<19} {p:8.1f} {o:8.1f} {med(ratios):6.1f}x {ratios[n // 4]:5.1f}-{ratios[(3 * n) // 4]:.1f}x {n:6d}")
+if rows:
+    print(f"\n{'robot':<16} {'interleaved':<19} {'pin_ns':>8} {'ours_ns':>8} {'ratio':>7} {'quartiles':>11} rounds")
+    print("\n".join(rows))
+EOF
+fi
+
 # 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run
 # (criterion's two rows, and the side-by-side gain: median and quartiles of the rounds).
 "$VENV/bin/python" - "$CRIT" "$START" "$CACHE/cargo_bench.txt" $ROBOTS <<'EOF'

@@ -7,6 +7,11 @@
 //! cargo run --release -p dynamics-tests --example calls -- ur5 inverse_dynamics 1000
 //! ```
 //!
+//! With `--time R` after `N` it times them too: `R` rounds of the `N` calls after one round
+//! untimed, and prints the median ns per call (`bench/run.sh` interleaves these runs with
+//! Pinocchio's benchmark, table 1c). Each call goes through a `&dyn Fn` and one entry of its
+//! result is summed: a nanosecond or two per call more than criterion's loop.
+//!
 //! Functions are named as Pinocchio's benchmark names its algorithms: `rnea`
 //! (`inverse_dynamics`), `nle` (`coriolis`, c + g), `crba` (`mass_matrix`), `gravity`, `aba`
 //! (`forward_dynamics`), and, for the robots generated with them, `rnea_derivatives`
@@ -17,17 +22,23 @@ use dynamics_tests::bench::{states, STATES};
 use std::hint::black_box;
 use std::process::ExitCode;
 
-/// Calls `function` of module `$m` `n` times, cycling through the states; `None` if it has
-/// no function of that name. Each whole result goes through `black_box`: with one entry read,
-/// the optimiser would compute that entry only (the UR5's g₁ is a constant 0).
+/// Calls `function` of module `$m` `n` times, cycling through the states, `rounds` times, each
+/// round timed (ns per call, in `times`); `None` if it has no function of that name. Each whole
+/// result goes through `black_box`: with one entry read, the optimiser would compute that entry
+/// only (the UR5's g₁ is a constant 0).
 macro_rules! run {
-    ($m:ident, $nq:literal, $nv:literal, $function:expr, $n:expr, $($derivatives:tt)?) => {{
+    ($m:ident, $nq:literal, $nv:literal, $function:expr, $n:expr, $rounds:expr, $times:expr, $($derivatives:tt)?) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
         let states = states::<$nq, $nv>(|q, qd, qdd| Gen.inverse_dynamics(q, qd, qdd));
         let mut sum = 0.0;
+        let times: &mut Vec<f64> = $times;
         let mut each = |f: &dyn Fn(&dynamics_tests::bench::State<$nq, $nv>) -> f64| {
-            for i in 0..$n {
-                sum += f(black_box(&states[i & (STATES - 1)]));
+            for _ in 0..$rounds {
+                let start = std::time::Instant::now();
+                for i in 0..$n {
+                    sum += f(black_box(&states[i & (STATES - 1)]));
+                }
+                times.push(start.elapsed().as_nanos() as f64 / $n.max(1) as f64);
             }
         };
         let found = match $function {
@@ -64,28 +75,52 @@ macro_rules! run {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [robot, function, n] = args.as_slice() else {
-        eprintln!("usage: calls ROBOT FUNCTION N (robots: ur5 panda rand7 talos_upper_body solo12 g1_29dof)");
-        return ExitCode::from(2);
+    let (robot, function, n, timed) = match args.as_slice() {
+        [robot, function, n] => (robot, function, n, None),
+        [robot, function, n, flag, r] if flag == "--time" => (robot, function, n, Some(r)),
+        _ => {
+            eprintln!(
+                "usage: calls ROBOT FUNCTION N [--time R] (robots: ur5 panda rand7 talos_upper_body solo12 g1_29dof)"
+            );
+            return ExitCode::from(2);
+        }
     };
     let Ok(n) = n.parse::<usize>() else {
         eprintln!("N must be a number of calls, not {n:?}");
         return ExitCode::from(2);
     };
+    let rounds = match timed.map(|r| r.parse::<usize>()) {
+        None => 1,
+        Some(Ok(r)) if r > 0 => r + 1,
+        Some(_) => {
+            eprintln!("--time takes a number of rounds (at least 1)");
+            return ExitCode::from(2);
+        }
+    };
     let f = function.as_str();
+    let mut times = Vec::with_capacity(rounds);
+    let t = &mut times;
     let sum = match robot.as_str() {
-        "ur5" => run!(urdf_ur5, 6, 6, f, n, derivatives),
-        "panda" => run!(urdf_panda, 7, 7, f, n, derivatives),
-        "rand7" => run!(urdf_rand7, 7, 7, f, n, derivatives),
-        "solo12" => run!(tree_solo12, 19, 18, f, n, derivatives),
-        "talos_upper_body" => run!(tree_talos_upper_body, 20, 20, f, n,),
-        "g1_29dof" => run!(tree_g1_29dof, 36, 35, f, n,),
+        "ur5" => run!(urdf_ur5, 6, 6, f, n, rounds, t, derivatives),
+        "panda" => run!(urdf_panda, 7, 7, f, n, rounds, t, derivatives),
+        "rand7" => run!(urdf_rand7, 7, 7, f, n, rounds, t, derivatives),
+        "solo12" => run!(tree_solo12, 19, 18, f, n, rounds, t, derivatives),
+        "talos_upper_body" => run!(tree_talos_upper_body, 20, 20, f, n, rounds, t,),
+        "g1_29dof" => run!(tree_g1_29dof, 36, 35, f, n, rounds, t,),
         other => {
             eprintln!("no robot {other:?} (ur5 panda rand7 talos_upper_body solo12 g1_29dof)");
             return ExitCode::from(2);
         }
     };
     match sum {
+        Some(sum) if timed.is_some() => {
+            // The first round is the warm-up.
+            let mut timed = times.split_off(1);
+            timed.sort_by(f64::total_cmp);
+            println!("{robot} {function} {:.1}", timed[timed.len() / 2]);
+            black_box(sum);
+            ExitCode::SUCCESS
+        }
         Some(sum) => {
             println!("{robot} {function} {n} calls (sum {sum:.3e})");
             ExitCode::SUCCESS
