@@ -168,41 +168,12 @@ if rows:
 EOF
 fi
 
-# 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run
-# (criterion's two rows, and the side-by-side gain: median and quartiles of the rounds).
-"$VENV/bin/python" - "$CRIT" "$START" "$CACHE/cargo_bench.txt" $ROBOTS <<'EOF'
-import json, os, sys
-crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[4:]]
-side = {}
-for line in open(sys.argv[3]):
-    f = line.rstrip("\n").split("\t")
-    if f[0] == "side-by-side" and len(f) == 8:
-        side[(f[1], f[2])] = [float(x) for x in f[3:]]
-def median(robot, name):
-    est = os.path.join(crit, robot, "generated_" + name, "new", "estimates.json")
-    if os.path.exists(est) and os.path.getmtime(est) >= start:
-        return json.load(open(est))["median"]["point_estimate"]
-rows = []
-for robot in robots:
-    for f in ["inverse_dynamics", "forward_dynamics", "mass_matrix", "gravity"]:
-        single, batch = median(robot, f + "_x8_single"), median(robot, f + "_x8_batch")
-        if single and batch:
-            s = side.get((robot, f + "_x8"))
-            cell = f"{s[1] / 8:9.1f} {s[0] / 8:9.1f} {s[2]:6.2f}x {s[3]:4.2f}-{s[4]:.2f}x" if s else ""
-            rows.append(f"{robot:<16} {f:<18} {single / 8:9.1f} {batch / 8:9.1f} {single / batch:6.2f}x  {cell}")
-if rows:
-    print(f"\n{'':<35} {'criterion':^27}  {'side by side (median, quartiles of rounds)':^40}")
-    print(f"{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}  "
-          f"{'single/st':>9} {'batch/st':>9} {'gain':>7} {'quartiles':>11}")
-    print("\n".join(rows))
-EOF
-
-# 4b. The generic reference implementation (dynamics-reference: heap, loops over joints) against
-# the generated code, this run: every function criterion timed on both sides (on the arms, all
+# 4. The batch functions against single calls (below). 4b. The generic reference implementation
+# (dynamics-reference: heap, loops over joints) against the generated code, this run: every function criterion timed on both sides (on the arms, all
 # that have a counterpart: `bench_every!` in tests/benches/dynamics.rs; the derivatives' reference
 # is central differences of the reference, as the tests compare them).
 # Beside criterion's ratio, the side-by-side one (SIDE_BY_SIDE rounds of alternating blocks): its
-# median over the rounds and the rounds' quartiles.
+# median over the rounds and the rounds' quartiles. (Tables 4, 4b and 4c in one script.)
 "$VENV/bin/python" - "$CRIT" "$START" "$CACHE/cargo_bench.txt" $ROBOTS <<'EOF'
 import json, os, sys
 crit, start, robots = sys.argv[1], float(sys.argv[2]), [r.split("+")[0] for r in sys.argv[4:]]
@@ -215,6 +186,22 @@ def median(robot, name):
     est = os.path.join(crit, robot, name, "new", "estimates.json")
     if os.path.exists(est) and os.path.getmtime(est) >= start:
         return json.load(open(est))["median"]["point_estimate"]
+# 4. The batch functions: 8 states in one `*_batch` call against 8 single-state calls, this run
+# (criterion's two rows, and the side-by-side gain: median and quartiles of the rounds).
+rows = []
+for robot in robots:
+    for f in ["inverse_dynamics", "forward_dynamics", "mass_matrix", "gravity"]:
+        single, batch = median(robot, f"generated_{f}_x8_single"), median(robot, f"generated_{f}_x8_batch")
+        if single and batch:
+            s = side.get((robot, f + "_x8"))
+            cell = f"{s[1] / 8:9.1f} {s[0] / 8:9.1f} {s[2]:6.2f}x {s[3]:4.2f}-{s[4]:.2f}x" if s else ""
+            rows.append(f"{robot:<16} {f:<18} {single / 8:9.1f} {batch / 8:9.1f} {single / batch:6.2f}x  {cell}")
+if rows:
+    print(f"\n{'':<35} {'criterion':^27}  {'side by side (median, quartiles of rounds)':^40}")
+    print(f"{'robot':<16} {'function (8 states)':<18} {'single/st':>9} {'batch/st':>9} {'gain':>7}  "
+          f"{'single/st':>9} {'batch/st':>9} {'gain':>7} {'quartiles':>11}")
+    print("\n".join(rows))
+# 4b.
 rows = []
 for robot in robots:
     d = os.path.join(crit, robot)

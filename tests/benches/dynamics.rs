@@ -98,11 +98,12 @@ macro_rules! pair_rows {
             $states,
             $label,
             $name,
-            elsewhere | $s | $gen,
+            elsewhere,
+            |$s| $gen,
             $reference
         );
     };
-    ($group:ident, $states:ident, $label:expr, $name:literal, elsewhere |$s:ident| $gen:expr, $reference:expr) => {
+    ($group:ident, $states:ident, $label:expr, $name:literal, elsewhere, |$s:ident| $gen:expr, $reference:expr) => {
         $group.bench_function(concat!("reference/", $name), |b| {
             cycled(b, &$states, |$s| $reference)
         });
@@ -336,13 +337,14 @@ macro_rules! bench_every {
             ($name:literal, |$s:ident| $gen:expr, $reference:expr) => {
                 pair_rows!(group, states, $label, $name, |$s| $gen, $reference);
             };
-            ($name:literal, elsewhere |$s:ident| $gen:expr, $reference:expr) => {
+            ($name:literal, elsewhere, |$s:ident| $gen:expr, $reference:expr) => {
                 pair_rows!(
                     group,
                     states,
                     $label,
                     $name,
-                    elsewhere | $s | $gen,
+                    elsewhere,
+                    |$s| $gen,
                     $reference
                 );
             };
@@ -496,7 +498,8 @@ macro_rules! bench_every {
         );
         pair!(
             "mass_matrix_and_bias",
-            elsewhere | s | Gen.mass_matrix_and_bias(black_box(&s.q), black_box(&s.qd)),
+            elsewhere,
+            |s| Gen.mass_matrix_and_bias(black_box(&s.q), black_box(&s.qd)),
             {
                 let (q, qd) = (black_box(s.q.as_slice()), black_box(s.qd.as_slice()));
                 (
@@ -507,12 +510,14 @@ macro_rules! bench_every {
         );
         pair!(
             "mass_matrix_inverse",
-            elsewhere | s | Gen.mass_matrix_inverse(black_box(&s.q)),
+            elsewhere,
+            |s| Gen.mass_matrix_inverse(black_box(&s.q)),
             minv(black_box(s.q.as_slice()))
         );
         pair!(
             "gravity_derivative",
-            elsewhere | s | Gen.gravity_derivative(black_box(&s.q)),
+            elsewhere,
+            |s| Gen.gravity_derivative(black_box(&s.q)),
             {
                 central(black_box(s.q.as_slice()), |q| {
                     dynamics_reference::gravity_forces(&robot, q, &g)
@@ -532,75 +537,47 @@ macro_rules! bench_every {
                 minv(q),
             )
         };
-        pair!(
+        // The derivative functions of (q, q̇, x): ours against `$reference` of the three slices.
+        macro_rules! of_three {
+            ($name:literal, $gen:ident, $x:ident, |$q:ident, $qd:ident, $a:ident| $reference:expr) => {
+                pair!(
+                    $name,
+                    elsewhere,
+                    |s| Gen.$gen(black_box(&s.q), black_box(&s.qd), black_box(&s.$x)),
+                    {
+                        let ($q, $qd, $a) = (
+                            black_box(s.q.as_slice()),
+                            black_box(s.qd.as_slice()),
+                            black_box(s.$x.as_slice()),
+                        );
+                        $reference
+                    }
+                );
+            };
+        }
+        of_three!(
             "inverse_dynamics_derivatives",
-            elsewhere
-                | s
-                | Gen.inverse_dynamics_derivatives(
-                    black_box(&s.q),
-                    black_box(&s.qd),
-                    black_box(&s.qdd)
-                ),
-            {
-                d_id(
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.qdd.as_slice()),
-                )
-            }
+            inverse_dynamics_derivatives,
+            qdd,
+            |q, qd, qdd| d_id(q, qd, qdd)
         );
-        pair!(
+        of_three!(
             "inverse_dynamics_with_derivatives",
-            elsewhere
-                | s
-                | Gen.inverse_dynamics_with_derivatives(
-                    black_box(&s.q),
-                    black_box(&s.qd),
-                    black_box(&s.qdd)
-                ),
-            {
-                let (q, qd, qdd) = (
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.qdd.as_slice()),
-                );
-                (id(q, qd, qdd), d_id(q, qd, qdd))
-            }
+            inverse_dynamics_with_derivatives,
+            qdd,
+            |q, qd, qdd| (id(q, qd, qdd), d_id(q, qd, qdd))
         );
-        pair!(
+        of_three!(
             "forward_dynamics_derivatives",
-            elsewhere
-                | s
-                | Gen.forward_dynamics_derivatives(
-                    black_box(&s.q),
-                    black_box(&s.qd),
-                    black_box(&s.tau)
-                ),
-            {
-                d_fd(
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.tau.as_slice()),
-                )
-            }
+            forward_dynamics_derivatives,
+            tau,
+            |q, qd, tau| d_fd(q, qd, tau)
         );
-        pair!(
+        of_three!(
             "forward_dynamics_with_derivatives",
-            elsewhere
-                | s
-                | Gen.forward_dynamics_with_derivatives(
-                    black_box(&s.q),
-                    black_box(&s.qd),
-                    black_box(&s.tau)
-                ),
-            {
-                let (q, qd, tau) = (
-                    black_box(s.q.as_slice()),
-                    black_box(s.qd.as_slice()),
-                    black_box(s.tau.as_slice()),
-                );
-                (fd(q, qd, tau), d_fd(q, qd, tau))
-            }
+            forward_dynamics_with_derivatives,
+            tau,
+            |q, qd, tau| (fd(q, qd, tau), d_fd(q, qd, tau))
         );
         group.finish();
     }};
