@@ -40,11 +40,11 @@ fn side_by_side<A, B>(
     // (the other side's block has just run).
     fn block<O>(warm: usize, calls: usize, f: &mut impl FnMut(usize) -> O) -> f64 {
         for i in 0..warm {
-            black_box(f(i & (STATES - 1)));
+            keep(f(i & (STATES - 1)));
         }
         let start = std::time::Instant::now();
         for i in 0..calls {
-            black_box(f(i & (STATES - 1)));
+            keep(f(i & (STATES - 1)));
         }
         start.elapsed().as_nanos() as f64 / calls as f64
     }
@@ -122,14 +122,27 @@ macro_rules! pair_rows {
     };
 }
 
-/// Times `f` on the states in turn, one per iteration (each through `black_box`).
+/// A result through `black_box` by reference: computed and in memory, where the callee wrote
+/// it, but not copied. Criterion's `iter` and `black_box(out)` take it by value, which copies
+/// it: for a result of more than 2,048 bytes (a mass-matrix batch: 2,304 bytes on the UR5,
+/// 3,136 on a 7-joint arm; a 35-joint tree's mass matrix, 9,800) glibc's `memcpy` uses
+/// `rep movsb`, whose speed on this Zen 3 depended on where the copy lay on the stack: the same
+/// batch loop took 1,022 or 1,786 ns by the result's offset, 1,106 ns with `rep movsb` turned
+/// off (`GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=1000000`). The reference's results
+/// are heap matrices, a pointer and two lengths by value: it never paid that copy.
+fn keep<O>(out: O) {
+    black_box(&out);
+}
+
+/// Times `f` on the states in turn, one per iteration (each through `black_box`, the result
+/// through [`keep`]).
 fn cycled<S, O>(b: &mut criterion::Bencher<'_>, states: &[S], mut f: impl FnMut(&S) -> O) {
     assert_eq!(states.len(), STATES);
     let mut k = 0;
     b.iter(|| {
         // `STATES` is a power of two: a mask, not a division, per iteration.
         k = (k + 1) & (STATES - 1);
-        f(black_box(&states[k]))
+        keep(f(black_box(&states[k])))
     });
 }
 
@@ -663,10 +676,10 @@ macro_rules! bench_batch {
         macro_rules! rows {
             ($name:literal, $batch:expr, $single:expr) => {
                 group.bench_function(concat!("generated/", $name, "_x8_batch"), |b| {
-                    b.iter(|| $batch)
+                    b.iter(|| keep($batch))
                 });
                 group.bench_function(concat!("generated/", $name, "_x8_single"), |b| {
-                    b.iter(|| $single)
+                    b.iter(|| keep($single))
                 });
                 side_by_side($label, concat!($name, "_x8"), |_| $batch, |_| $single);
             };

@@ -24,8 +24,9 @@ use std::process::ExitCode;
 
 /// Calls `function` of module `$m` `n` times, cycling through the states, `rounds` times, each
 /// round timed (ns per call, in `times`); `None` if it has no function of that name. Each whole
-/// result goes through `black_box`: with one entry read, the optimiser would compute that entry
-/// only (the UR5's g₁ is a constant 0).
+/// result goes through `black_box` by reference (with one entry read, the optimiser would
+/// compute that entry only: the UR5's g₁ is a constant 0; by value it would copy the result, a
+/// `memcpy` that Pinocchio's benchmark, writing into its `Data`, does not pay).
 macro_rules! run {
     ($m:ident, $nq:literal, $nv:literal, $function:expr, $n:expr, $rounds:expr, $times:expr, $($derivatives:tt)?) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
@@ -42,30 +43,33 @@ macro_rules! run {
             }
         };
         let found = match $function {
-            "rnea" => { each(&|s| black_box(Gen.inverse_dynamics(&s.q, &s.qd, &s.qdd))[0]); true }
-            "nle" => { each(&|s| black_box(Gen.coriolis(&s.q, &s.qd))[0]); true }
-            "crba" => { each(&|s| black_box(Gen.mass_matrix(&s.q))[(0, $nv - 1)]); true }
-            "gravity" => { each(&|s| black_box(Gen.gravity(&s.q))[0]); true }
-            "aba" => { each(&|s| black_box(Gen.forward_dynamics(&s.q, &s.qd, &s.tau))[0]); true }
+            "rnea" => { each(&|s| { let r = Gen.inverse_dynamics(&s.q, &s.qd, &s.qdd); black_box(&r); r[0] }); true }
+            "nle" => { each(&|s| { let r = Gen.coriolis(&s.q, &s.qd); black_box(&r); r[0] }); true }
+            "crba" => { each(&|s| { let r = Gen.mass_matrix(&s.q); black_box(&r); r[(0, $nv - 1)] }); true }
+            "gravity" => { each(&|s| { let r = Gen.gravity(&s.q); black_box(&r); r[0] }); true }
+            "aba" => { each(&|s| { let r = Gen.forward_dynamics(&s.q, &s.qd, &s.tau); black_box(&r); r[0] }); true }
             $(
             // (`$derivatives` only marks the robots generated with the derivative functions.)
             "rnea_derivatives" if !stringify!($derivatives).is_empty() => {
                 each(&|s| {
-                    let (dq, dv) = black_box(Gen.inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd));
+                    let r = Gen.inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd);
+                    black_box(&r);
+                    let (dq, dv) = r;
                     dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
                 });
                 true
             }
             "aba_derivatives" => {
                 each(&|s| {
-                    let (a, dq, dv, _) =
-                        black_box(Gen.forward_dynamics_with_derivatives(&s.q, &s.qd, &s.tau));
+                    let r = Gen.forward_dynamics_with_derivatives(&s.q, &s.qd, &s.tau);
+                    black_box(&r);
+                    let (a, dq, dv, _) = r;
                     a[0] + dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
                 });
                 true
             }
-            "minverse" => { each(&|s| black_box(Gen.mass_matrix_inverse(&s.q))[(0, $nv - 1)]); true }
-            "gravity_derivatives" => { each(&|s| black_box(Gen.gravity_derivative(&s.q))[($nv - 1, 0)]); true }
+            "minverse" => { each(&|s| { let r = Gen.mass_matrix_inverse(&s.q); black_box(&r); r[(0, $nv - 1)] }); true }
+            "gravity_derivatives" => { each(&|s| { let r = Gen.gravity_derivative(&s.q); black_box(&r); r[($nv - 1, 0)] }); true }
             )?
             _ => false,
         };
