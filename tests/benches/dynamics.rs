@@ -122,14 +122,10 @@ macro_rules! pair_rows {
     };
 }
 
-/// A result through `black_box` by reference: computed and in memory, where the callee wrote
-/// it, but not copied. Criterion's `iter` and `black_box(out)` take it by value, which copies
-/// it: for a result of more than 2,048 bytes (a mass-matrix batch: 2,304 bytes on the UR5,
-/// 3,136 on a 7-joint arm; a 35-joint tree's mass matrix, 9,800) glibc's `memcpy` uses
-/// `rep movsb`, whose speed on this Zen 3 depended on where the copy lay on the stack: the same
-/// batch loop took 1,022 or 1,786 ns by the result's offset, 1,106 ns with `rep movsb` turned
-/// off (`GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=1000000`). The reference's results
-/// are heap matrices, a pointer and two lengths by value: it never paid that copy.
+/// A result through `black_box` by reference: computed and in memory where the callee wrote
+/// it, and not copied again. By value (criterion's `iter`, `black_box(out)`) the harness copied
+/// every result once more, a `memcpy` of up to 3 KB here that the reference's results, heap
+/// matrices (a pointer and two lengths by value), never paid.
 fn keep<O>(out: O) {
     black_box(&out);
 }
