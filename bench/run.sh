@@ -23,6 +23,8 @@ VENV=$CACHE/venv
 BIN=$CACHE/pinocchio_bench
 ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff"}
 CALLS=${CALLS:-100000}
+# Pinocchio's algorithms, by its benchmark's names, that tables 3b and 5 run on both sides.
+ALGOS="rnea nle crba gravity aba rnea_derivatives aba_derivatives minverse gravity_derivatives"
 REPS=${REPS:-5}
 mkdir -p "$CACHE/models"
 if [ "${CALLGRIND:-0}" = 1 ]; then
@@ -137,7 +139,7 @@ if [ "${PIN_ROUNDS:-7}" -gt 0 ]; then
     name=${NAMES[$i]}; model=${ARGS[$i]}
     for round in $(seq "${PIN_ROUNDS:-7}"); do
       "$BIN" --calls "$CALLS" --reps 1 "$model" | sed "s/^/pin $round /" >> "$CACHE/interleaved.txt"
-      for algo in rnea nle crba gravity aba rnea_derivatives aba_derivatives minverse gravity_derivatives; do
+      for algo in $ALGOS; do
         { "$EX" "$name" "$algo" "$CALLS" --time 1 2>/dev/null || true; } | sed "s/^/ours $round /" >> "$CACHE/interleaved.txt"
       done
     done
@@ -294,7 +296,7 @@ if [ "${CALLGRIND:-0}" = 1 ]; then
   printf '%-16s %-20s %12s %12s %7s\n' robot "algorithm (AVX2)" pin_instr ours_instr ratio
   for i in "${!NAMES[@]}"; do
     name=${NAMES[$i]}; model=${ARGS[$i]}
-    for algo in rnea nle crba gravity aba rnea_derivatives aba_derivatives minverse gravity_derivatives; do
+    for algo in $ALGOS; do
       pin=$(per_call "$PBIN" --count "$algo" "$model" --calls) || pin=
       ours=$(per_call "$EX" "$name" "$algo") || ours=
       [ -n "$pin" ] && [ -n "$ours" ] || continue

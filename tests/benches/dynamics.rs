@@ -7,7 +7,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_model::LoadOptions;
-use dynamics_tests::bench::{states, STATES};
+use dynamics_tests::bench::{keep, states, STATES};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector6};
 use std::hint::black_box;
 
@@ -40,11 +40,11 @@ fn side_by_side<A, B>(
     // (the other side's block has just run).
     fn block<O>(warm: usize, calls: usize, f: &mut impl FnMut(usize) -> O) -> f64 {
         for i in 0..warm {
-            keep(f(i & (STATES - 1)));
+            keep(&f(i & (STATES - 1)));
         }
         let start = std::time::Instant::now();
         for i in 0..calls {
-            keep(f(i & (STATES - 1)));
+            keep(&f(i & (STATES - 1)));
         }
         start.elapsed().as_nanos() as f64 / calls as f64
     }
@@ -122,23 +122,15 @@ macro_rules! pair_rows {
     };
 }
 
-/// A result through `black_box` by reference: computed and in memory where the callee wrote
-/// it, and not copied again. By value (criterion's `iter`, `black_box(out)`) the harness copied
-/// every result once more, a `memcpy` of up to 3 KB here that the reference's results, heap
-/// matrices (a pointer and two lengths by value), never paid.
-fn keep<O>(out: O) {
-    black_box(&out);
-}
-
 /// Times `f` on the states in turn, one per iteration (each through `black_box`, the result
-/// through [`keep`]).
+/// through `keep`).
 fn cycled<S, O>(b: &mut criterion::Bencher<'_>, states: &[S], mut f: impl FnMut(&S) -> O) {
     assert_eq!(states.len(), STATES);
     let mut k = 0;
     b.iter(|| {
         // `STATES` is a power of two: a mask, not a division, per iteration.
         k = (k + 1) & (STATES - 1);
-        keep(f(black_box(&states[k])))
+        keep(&f(black_box(&states[k])))
     });
 }
 
@@ -672,10 +664,10 @@ macro_rules! bench_batch {
         macro_rules! rows {
             ($name:literal, $batch:expr, $single:expr) => {
                 group.bench_function(concat!("generated/", $name, "_x8_batch"), |b| {
-                    b.iter(|| keep($batch))
+                    b.iter(|| keep(&$batch))
                 });
                 group.bench_function(concat!("generated/", $name, "_x8_single"), |b| {
-                    b.iter(|| keep($single))
+                    b.iter(|| keep(&$single))
                 });
                 side_by_side($label, concat!($name, "_x8"), |_| $batch, |_| $single);
             };

@@ -9,7 +9,7 @@
 //!
 //! With `--time R` after `N` it times them too: `R` rounds of the `N` calls after one round
 //! untimed, and prints the median ns per call (`bench/run.sh` interleaves these runs with
-//! Pinocchio's benchmark, table 1c). Each call goes through a `&dyn Fn` and one entry of its
+//! Pinocchio's benchmark, table 3b). Each call goes through a `&dyn Fn` and one entry of its
 //! result is summed: a nanosecond or two per call more than criterion's loop.
 //!
 //! Functions are named as Pinocchio's benchmark names its algorithms: `rnea`
@@ -18,15 +18,13 @@
 //! (`inverse_dynamics_derivatives`), `aba_derivatives` (`forward_dynamics_with_derivatives`),
 //! `minverse` (`mass_matrix_inverse`) and `gravity_derivatives` (`gravity_derivative`).
 
-use dynamics_tests::bench::{states, STATES};
+use dynamics_tests::bench::{keep, states, STATES};
 use std::hint::black_box;
 use std::process::ExitCode;
 
 /// Calls `function` of module `$m` `n` times, cycling through the states, `rounds` times, each
 /// round timed (ns per call, in `times`); `None` if it has no function of that name. Each whole
-/// result goes through `black_box` by reference (with one entry read, the optimiser would
-/// compute that entry only: the UR5's g₁ is a constant 0; by value it would copy the result, a
-/// `memcpy` that Pinocchio's benchmark, writing into its `Data`, does not pay).
+/// result goes through [`keep`].
 macro_rules! run {
     ($m:ident, $nq:literal, $nv:literal, $function:expr, $n:expr, $rounds:expr, $times:expr, $($derivatives:tt)?) => {{
         use dynamics_tests::generated::$m::Robot as Gen;
@@ -43,17 +41,17 @@ macro_rules! run {
             }
         };
         let found = match $function {
-            "rnea" => { each(&|s| { let r = Gen.inverse_dynamics(&s.q, &s.qd, &s.qdd); black_box(&r); r[0] }); true }
-            "nle" => { each(&|s| { let r = Gen.coriolis(&s.q, &s.qd); black_box(&r); r[0] }); true }
-            "crba" => { each(&|s| { let r = Gen.mass_matrix(&s.q); black_box(&r); r[(0, $nv - 1)] }); true }
-            "gravity" => { each(&|s| { let r = Gen.gravity(&s.q); black_box(&r); r[0] }); true }
-            "aba" => { each(&|s| { let r = Gen.forward_dynamics(&s.q, &s.qd, &s.tau); black_box(&r); r[0] }); true }
+            "rnea" => { each(&|s| { let r = Gen.inverse_dynamics(&s.q, &s.qd, &s.qdd); keep(&r); r[0] }); true }
+            "nle" => { each(&|s| { let r = Gen.coriolis(&s.q, &s.qd); keep(&r); r[0] }); true }
+            "crba" => { each(&|s| { let r = Gen.mass_matrix(&s.q); keep(&r); r[(0, $nv - 1)] }); true }
+            "gravity" => { each(&|s| { let r = Gen.gravity(&s.q); keep(&r); r[0] }); true }
+            "aba" => { each(&|s| { let r = Gen.forward_dynamics(&s.q, &s.qd, &s.tau); keep(&r); r[0] }); true }
             $(
             // (`$derivatives` only marks the robots generated with the derivative functions.)
             "rnea_derivatives" if !stringify!($derivatives).is_empty() => {
                 each(&|s| {
                     let r = Gen.inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd);
-                    black_box(&r);
+                    keep(&r);
                     let (dq, dv) = r;
                     dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
                 });
@@ -62,14 +60,14 @@ macro_rules! run {
             "aba_derivatives" => {
                 each(&|s| {
                     let r = Gen.forward_dynamics_with_derivatives(&s.q, &s.qd, &s.tau);
-                    black_box(&r);
+                    keep(&r);
                     let (a, dq, dv, _) = r;
                     a[0] + dq[($nv - 1, 0)] + dv[($nv - 1, 0)]
                 });
                 true
             }
-            "minverse" => { each(&|s| { let r = Gen.mass_matrix_inverse(&s.q); black_box(&r); r[(0, $nv - 1)] }); true }
-            "gravity_derivatives" => { each(&|s| { let r = Gen.gravity_derivative(&s.q); black_box(&r); r[($nv - 1, 0)] }); true }
+            "minverse" => { each(&|s| { let r = Gen.mass_matrix_inverse(&s.q); keep(&r); r[(0, $nv - 1)] }); true }
+            "gravity_derivatives" => { each(&|s| { let r = Gen.gravity_derivative(&s.q); keep(&r); r[($nv - 1, 0)] }); true }
             )?
             _ => false,
         };

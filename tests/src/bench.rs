@@ -1,7 +1,9 @@
 //! The states the benchmarks (`benches/dynamics.rs`) and the instruction counts
-//! (`examples/calls.rs`, `bench/run.sh` with `CALLGRIND=1`) cycle through.
+//! (`examples/calls.rs`, `bench/run.sh` with `CALLGRIND=1`) cycle through, and how both keep a
+//! result ([`keep`]).
 
 use nalgebra::SVector;
+use std::hint::black_box;
 
 /// States cycled through by the benchmarks: 1,024, as in Pinocchio's benchmark (`bench/pinocchio_bench.cpp`).
 pub const STATES: usize = 1024;
@@ -48,4 +50,14 @@ pub fn states<const NQ: usize, const NV: usize>(
             State { q, qd, qdd, tau }
         })
         .collect()
+}
+
+/// A result through `black_box` by reference: computed and in memory where the callee wrote
+/// it, and not copied again (with one entry read, the optimiser would compute that entry only:
+/// the UR5's g₁ is a constant 0). By value (criterion's `iter`, `black_box(out)`) the harness
+/// copied every result once more, a `memcpy` of up to 3 KB on the arms that Pinocchio's
+/// benchmark (writing into its `Data`) and the reference's results (heap matrices, a pointer
+/// and two lengths by value) never paid.
+pub fn keep<O>(out: &O) {
+    black_box(out);
 }
