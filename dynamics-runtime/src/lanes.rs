@@ -1,6 +1,7 @@
 //! [`Lanes`]: `B` values of one scalar type side by side, for the generated `*_batch`
 //! functions (structure of arrays across states).
 
+use core::mem::MaybeUninit;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use nalgebra::{ArrayStorage, SMatrix, Scalar};
 
@@ -71,53 +72,65 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// cannot unwind without seeing its body (which has no panic path): a Rust-ABI function left
     /// out of line counts as a possible panic for `no_panic`.
     ///
-    /// Up to 8 × 8, nested `array::map`s, which the optimiser unrolls into straight-line copies
-    /// (measured: a UR5 mass matrix batch of 8, 17.1 ns per state, against 23–24 with loops).
-    /// Larger, plain loops. There (a humanoid's 35-vector of gravity torques) the maps were left
-    /// out of line, calling their closures through pointers, and the `extern "C"` body held an
-    /// abort path (`panic_cannot_unwind`), which the `no_panic` test's machine-code check
-    /// found. Batches of 8 with the loops, against the maps: G1's mass matrix −14 %, forward
-    /// dynamics −8 %, gravity −17 %, Solo-12's mass matrix −16 %, the others within ±3 %.
+    /// The matrices are written where the caller wants its result, by [`Self::scatter_fill`]
+    /// into this function's return slot, never built in a local and copied: the optimiser
+    /// hands `scatter_fill` the return slot itself (LLVM's call-slot optimisation: `out` is
+    /// uninitialised, written by the call and then only moved), whatever it makes of the
+    /// loops. The earlier form, nested `array::map`s inside `array::from_fn`, wrote into the
+    /// return slot only where the optimiser unrolled all `B` matrices: it did in a small crate,
+    /// and in the test crate's benchmark it kept a loop over the matrices, built them in its
+    /// frame and copied them out, 3,136 bytes for a batch of eight 7 × 7 mass matrices, which
+    /// glibc copies with `rep movsb` above 2 KB, at a speed that on a Zen 3 depends on where the
+    /// two buffers lie: rand7's mass-matrix batch took 1,832 ns in one build and 678 ns with
+    /// `rep movsb` turned off (`GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=1000000`),
+    /// 0.66× of eight single calls against 1.68×.
     #[inline(never)]
     #[must_use]
     #[allow(improper_ctypes_definitions)] // called from Rust only
+    #[allow(unsafe_code)]
     pub extern "C" fn scatter<const R: usize, const C: usize>(
         cols: &[[Self; R]; C],
     ) -> [SMatrix<T, R, C>; B]
     where
-        T: Default + Scalar,
+        T: Scalar,
     {
-        if R <= 8 && C <= 8 {
-            return core::array::from_fn(|l| {
-                SMatrix::from_array_storage(ArrayStorage(cols.each_ref().map(|col| {
-                    col.each_ref()
-                        .map(|x| x.0.get(l).copied().unwrap_or_default())
-                })))
-            });
-        }
-        Self::scatter_loops(cols)
+        let mut out = MaybeUninit::<[SMatrix<T, R, C>; B]>::uninit();
+        Self::scatter_fill(cols, &mut out);
+        // SAFETY: `scatter_fill` wrote every entry of every matrix (its loops run over all
+        // `C` columns, `R` rows and `B` lanes), and an `SMatrix` is its entries alone.
+        unsafe { out.assume_init() }
     }
 
-    /// [`Self::scatter`]'s transpose as plain loops (its form for matrices over 8 × 8, and
-    /// [`Self::scatter_column`]'s): each lane array read once, its values written to the `B`
-    /// matrices.
-    #[cfg_attr(debug_assertions, inline)]
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn scatter_loops<const R: usize, const C: usize>(cols: &[[Self; R]; C]) -> [SMatrix<T, R, C>; B]
-    where
-        T: Default + Scalar,
+    /// [`Self::scatter`]'s transpose into `out`: entry `(r, c)` of matrix `l` is lane `l` of
+    /// `cols[c][r]`, every entry written (so `out` is initialised after it). Out of line and
+    /// `extern "C"` for the call-slot optimisation in `scatter` (a call it can see into, inlined,
+    /// would leave the stores in `scatter`'s frame again) and for `no_panic`, as `scatter`;
+    /// iterators and pointer offsets within the arrays, no index to check.
+    #[inline(never)]
+    #[allow(improper_ctypes_definitions)] // called from Rust only
+    #[allow(unsafe_code)]
+    extern "C" fn scatter_fill<const R: usize, const C: usize>(
+        cols: &[[Self; R]; C],
+        out: &mut MaybeUninit<[SMatrix<T, R, C>; B]>,
+    ) where
+        T: Scalar,
     {
-        let mut out = [SMatrix::from_array_storage(ArrayStorage([[T::default(); R]; C])); B];
+        let matrices = out.as_mut_ptr().cast::<SMatrix<T, R, C>>();
         for (c, col) in cols.iter().enumerate() {
             for (r, lanes) in col.iter().enumerate() {
-                for (m, &v) in out.iter_mut().zip(&lanes.0) {
-                    if let Some(x) = m.data.0.get_mut(c).and_then(|m_col| m_col.get_mut(r)) {
-                        *x = v;
+                for (l, &v) in lanes.0.iter().enumerate() {
+                    // SAFETY: `l < B`, `c < C` and `r < R` (positions in the arrays `lanes.0`,
+                    // `cols` and `col`): matrix `l` of the `B` in `out`, column `c` of its `C`
+                    // arrays of `R` entries (`ArrayStorage`), entry `r` of it; written through
+                    // raw pointers, no reference to the uninitialised memory made.
+                    unsafe {
+                        let columns =
+                            core::ptr::addr_of_mut!((*matrices.add(l)).data.0).cast::<[T; R]>();
+                        columns.add(c).cast::<T>().add(r).write(v);
                     }
                 }
             }
         }
-        out
     }
 
     /// [`Self::scatter`] of one column, inlined: one `R`-vector per state, for the generated
@@ -129,8 +142,7 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     /// the old and new generated code in one binary, `B` = 8, per state, two runs): the UR5's
     /// inverse dynamics 30.2 → 28.5 and 29.8 → 28.5 ns, the Panda's 45.1 → 42.3 and 45.1 →
     /// 42.0 ns; callgrind 264 → 254 and 420 → 411 instructions (`docs/performance.md`). Plain
-    /// loops (`scatter_loops`, [`Self::scatter`]'s for large matrices), as in [`Self::gather`],
-    /// for `no_panic`.
+    /// loops into a zeroed local, as in [`Self::gather`], for `no_panic`.
     #[cfg_attr(debug_assertions, inline)]
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[must_use]
@@ -138,7 +150,16 @@ impl<T: Copy, const B: usize> Lanes<T, B> {
     where
         T: Default + Scalar,
     {
-        Self::scatter_loops(cols)
+        let mut out = [SMatrix::from_array_storage(ArrayStorage([[T::default(); R]; 1])); B];
+        let [col] = cols;
+        for (r, lanes) in col.iter().enumerate() {
+            for (m, &v) in out.iter_mut().zip(&lanes.0) {
+                if let Some(x) = m.data.0[0].get_mut(r) {
+                    *x = v;
+                }
+            }
+        }
+        out
     }
 
     /// A function of an array to two arrays of the same length (such as the sines and
@@ -253,6 +274,16 @@ mod tests {
             [[[1.0, 2.0]], [[3.0, 4.0]], [[5.0, 6.0]]]
         );
         assert_eq!(Lanes::scatter_column(&[lanes]), back);
+        // A 2 × 3 matrix per state (columns of lanes): entry (r, c) of state l is lane l.
+        let entry =
+            |r: usize, c: usize| Lanes::<f64, 3>([0, 1, 2].map(|l| (100 * l + 10 * r + c) as f64));
+        let cols = [0, 1, 2].map(|c| [entry(0, c), entry(1, c)]);
+        for (l, m) in Lanes::scatter(&cols).iter().enumerate() {
+            assert_eq!(
+                *m,
+                nalgebra::SMatrix::<f64, 2, 3>::from_fn(|r, c| (100 * l + 10 * r + c) as f64)
+            );
+        }
         let (s, c) = Lanes::each2(lanes, |x: [f64; 3]| (x.map(|v| v + 1.0), x.map(|v| -v)));
         assert_eq!(s[1].0, [3.0, 5.0, 7.0]);
         assert_eq!(c[0].0, [-1.0, -3.0, -5.0]);

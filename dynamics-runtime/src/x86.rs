@@ -36,7 +36,8 @@
 //! registers, the AVX-512 body of Talos' forward dynamics (5,501 operations, `B` = 8) had
 //! taken 155 s to compile in release, and G1's four batch functions 541 s.
 
-// The crate's one unsafe module: intrinsics behind tokens whose constructors are `unsafe`.
+// The crate's unsafe module (besides `Lanes::scatter`'s writes into its uninitialised result):
+// intrinsics behind tokens whose constructors are `unsafe`.
 #![allow(unsafe_code)]
 
 use crate::Lanes;
