@@ -278,10 +278,20 @@ fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
     Some((pattern, states))
 }
 
-/// The statements of a copy's batch function that runs `body`, a body of instructions for
-/// one register of lanes (`L` = `lanes` states, not generic: [`super::dispatch`]'s
-/// `token_body_item`), on the `B` states `L` at a time (`B` a multiple of `L`;
-/// [`super::zmm`]). `result`: `R` of `-> [R; B]`. `None` for a function without states.
+/// A copy's batch function that runs `body`, a body of instructions for one register of
+/// lanes (`L` = `lanes` states, not generic: [`super::dispatch`]'s `token_body_item`), on the
+/// `B` states `L` at a time (`B` a multiple of `L`; [`super::zmm`]): the statements of the
+/// copy, `copy`, and the item they call, `fill`. `elem`: `R` of `-> [R; B]`, `b` the name of
+/// `B`, `generics` and `args` the copy's; `attrs` its `cfg` and `target_feature`. `None` for a
+/// function without states.
+///
+/// `fill` (`#[inline(never)]`, `extern "C"`) writes each register's results into the copy's
+/// uninitialised result through a pointer, and the copy returns it: the optimiser then hands
+/// `fill` the copy's return slot itself (LLVM's call-slot optimisation), so the `B` results are
+/// written once, where the caller wants them. Built in the copy's frame instead (a zeroed
+/// array, filled, returned), they were zeroed by a `memset` and copied out by a `memcpy`
+/// (Solo-12's inverse dynamics batch of 8: 1,152 bytes; G1's 2,240, which glibc copies with
+/// `rep movsb`, placement-dependent on a Zen 3: see the runtime's `Lanes::scatter`).
 ///
 /// Written for one register, the body is compiled once whatever `B` is; with `B` = 2`L`, its
 /// values in two registers each, G1's AVX2 bodies took 189 s to compile in release against
@@ -290,23 +300,58 @@ fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
 /// branch for `B` = `L`: a debug build, which does not prune `if const` branches before it
 /// generates code, then also compiled the bodies `B` wide (G1's four batch functions with
 /// `B` = 8: 119 s in debug).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn per_register(
+    fill: &Ident,
     body: &Ident,
     names: &[Ident],
-    result: &TokenStream,
+    elem: &TokenStream,
     lanes: &proc_macro2::Literal,
-) -> Option<TokenStream> {
+    b: &Ident,
+    generics: &TokenStream,
+    args: &TokenStream,
+    attrs: &TokenStream,
+) -> Option<(TokenStream, TokenStream)> {
     let (pattern, states) = zipped(names)?;
-    Some(quote! {
-        let mut out = [#result::zeros(); B];
-        let (chunks, _) = out.as_chunks_mut::<#lanes>();
-        #(let (#names, _) = #names.as_chunks::<#lanes>();)*
-        for (o, #pattern) in chunks.iter_mut().zip(#states) {
-            // SAFETY: the function's contract: the copy's features.
-            *o = unsafe { self.#body(#(#names),*) };
+    let copy = quote! {
+        let mut out = ::core::mem::MaybeUninit::<[#elem; #b]>::uninit();
+        // SAFETY: the function's contract: the copy's features.
+        unsafe { self.#fill::<#b>(#(#names,)* &mut out) };
+        // SAFETY: `B` is a multiple of the register's lanes here, so `fill` wrote every one of
+        // the `B` results.
+        unsafe { out.assume_init() }
+    };
+    let copy_name = fill.to_string();
+    let copy_name = copy_name.strip_suffix("_fill").unwrap_or(&copy_name);
+    let doc = format!(
+        " The loop of [`Self::{copy_name}`]: [`Self::{body}`] on each register of {lanes} states, its results written into `out` (all `B` of them, `B` a multiple of {lanes})."
+    );
+    let args: Vec<TokenTree> = args.clone().into_iter().collect();
+    let args = match args.last() {
+        Some(TokenTree::Punct(p)) if p.as_char() == ',' => &args[..args.len() - 1],
+        _ => &args[..],
+    };
+    let args: TokenStream = args.iter().cloned().collect();
+    let item = quote! {
+        #[doc = #doc]
+        #[doc = ""]
+        #[doc = " # Safety"]
+        #[doc = ""]
+        #[doc = " The CPU has the copy's features, and `B` is a multiple of the register's lanes."]
+        #attrs
+        #[inline(never)]
+        #[allow(unsafe_code, improper_ctypes_definitions)]
+        unsafe extern "C" fn #fill<#generics>(#args, out: &mut ::core::mem::MaybeUninit<[#elem; #b]>) {
+            let results = out.as_mut_ptr().cast::<[#elem; #lanes]>();
+            #(let (#names, _) = #names.as_chunks::<#lanes>();)*
+            for (k, #pattern) in #states.enumerate() {
+                // SAFETY: `k` < `B` / `L`, so register `k`'s `L` results lie within `out`; the
+                // function's contract: the copy's features.
+                unsafe { results.add(k).write(self.#body(#(#names),*)) };
+            }
         }
-        out
-    })
+    };
+    Some((copy, item))
 }
 
 /// The impl block with each public `X_batch<const B: usize>` marked `#[inline(never)]` (a

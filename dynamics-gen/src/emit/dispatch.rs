@@ -627,6 +627,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     } else {
         (quote!(<#generics>), quote!(::<#(#generic_names),*>))
     };
+    let const_generics = generics.clone();
     let generics = if generic_names.is_empty() {
         quote!()
     } else {
@@ -691,9 +692,20 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         let (Some(b), Some(elem)) = (generic_names.first(), array_elem(&ret)) else {
             return (plain.clone(), quote!());
         };
-        let Some(per_register) =
-            super::batch::per_register(&body_z, &arg_names, &quote!(<#elem>), &lanes)
-        else {
+        let fill = format_ident!("{}_fill", copy);
+        let (cfg, features) = (isa.cfg(), isa.features());
+        let attrs = quote!(#cfg #[target_feature(enable = #features)]);
+        let Some((per_register, fill_item)) = super::batch::per_register(
+            &fill,
+            &body_z,
+            &arg_names,
+            &elem,
+            &lanes,
+            b,
+            &const_generics,
+            &args,
+            &attrs,
+        ) else {
             return (plain.clone(), quote!());
         };
         let call = quote! {
@@ -704,7 +716,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             }
         };
         let item = token_body_item(isa, &body_z, b, &lanes, &args, &ret, z_body, &doc);
-        (call, item)
+        (call, quote!(#item #fill_item))
     };
     let (fast_call, fast_body) = copy(Isa::Avx512, &fast);
     let (mid_call, mid_body) = copy(Isa::Avx2, &mid);
@@ -858,8 +870,19 @@ fn zmm_only(
         );
         let body_item = token_body_item(isa, &body_z, b, &lanes, args, ret, &z_body, &body_doc);
         // (`None` for a function without states, which no batch function is.)
-        let per_register = super::batch::per_register(&body_z, arg_names, &quote!(<#elem>), &lanes)
-            .unwrap_or_else(|| per_state.clone());
+        let attrs = quote!(#cfg #[target_feature(enable = #features)]);
+        let (per_register, fill_item) = super::batch::per_register(
+            &format_ident!("{}_fill", fast),
+            &body_z,
+            arg_names,
+            &elem,
+            &lanes,
+            b,
+            generics,
+            args,
+            &attrs,
+        )
+        .unwrap_or_else(|| (per_state.clone(), quote!()));
         let call = quote! {
             if const { #b % #lanes == 0 } && Self::#has() {
                 return unsafe { self.#fast::<#b>(#(#arg_names),*) };
@@ -871,8 +894,14 @@ fn zmm_only(
             #[target_feature(enable = #features)]
             #[allow(unsafe_code, improper_ctypes_definitions)]
             unsafe extern "C" fn #fast<#generics>(#args) #ret {
-                #per_register
+                if const { #b % #lanes == 0 } {
+                    #per_register
+                } else {
+                    #per_state
+                }
             }
+
+            #fill_item
 
             #body_item
         };
@@ -1549,8 +1578,16 @@ mod tests {
             let flat: String = solo.split_whitespace().collect();
             let lanes = if isa == "avx512" { 8 } else { 4 };
             assert!(!flat.contains(&format!("batch_body_{isa}::<")));
+            // The loop in `_fill`, writing each register's results into the copy's result,
+            // which the copy hands it uninitialised and returns (no local copied out).
             assert!(flat.contains(&format!(
-                "*o=unsafe{{self.inverse_dynamics_batch_body_{isa}(q,qd,qdd)}};"
+                "results.add(k).write(self.inverse_dynamics_batch_body_{isa}(q,qd,qdd))"
+            )));
+            assert!(flat.contains(&format!(
+                "unsafe{{self.inverse_dynamics_batch_{isa}_fill::<B>(q,qd,qdd,&mutout)}};unsafe{{out.assume_init()}}"
+            )));
+            assert!(flat.contains(&format!(
+                "#[inline(never)]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_batch_{isa}_fill<constB:usize>(&self,"
             )));
             // For one register: not generic, its `B` that register's lanes.
             assert!(flat.contains(&format!(
