@@ -802,8 +802,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 ///     (f once per state)
 /// }
 /// unsafe extern "C" fn f_batch_avx512<const B: usize>(&self, args) -> [R; B]  // AVX-512
+/// unsafe extern "C" fn f_batch_avx512_fill<const B: usize>(&self, args, out)  // its loop
 /// unsafe fn f_batch_body_avx512(&self, args of 8 states) -> [R; 8]            // z_body, `Avx512`
 /// unsafe extern "C" fn f_batch_avx2<const B: usize>(&self, args) -> [R; B]    // AVX2 and FMA
+/// unsafe extern "C" fn f_batch_avx2_fill<const B: usize>(&self, args, out)    // its loop
 /// unsafe fn f_batch_body_avx2(&self, args of 4 states) -> [R; 4]              // z_body, `Avx2`
 /// ```
 ///
