@@ -13,7 +13,7 @@
 # decodes AVX2 and FMA but not AVX-512: ours runs its AVX2 copy there, and Pinocchio is compiled a second time
 # for x86-64-v3, AVX2 and FMA, to match), SIDE_BY_SIDE (rounds of the side-by-side timing of ours against the
 # reference, default 21; 0: off), PIN_ROUNDS (rounds of Pinocchio and ours interleaved, table 3b; default 7,
-# 0: off).
+# 0: off; with CODEGEN=1 its rounds also run Pinocchio's code-generated functions, table 3c).
 # First run: a venv with pin==4.1.0 under ~/.cache/dynamics-gen-bench and a compile of a few minutes.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -50,6 +50,7 @@ if [ ! -x "$BIN" ] || [ "$HERE/pinocchio_bench.cpp" -nt "$BIN" ]; then
 fi
 ARGS=()
 NAMES=()
+FFS=()
 for r in $ROBOTS; do
   # NAME+ff: the URDF on a free-flyer base; URDFs in tests/data/robots or its trees/.
   name=${r%+ff}; ff=0; [ "$name" != "$r" ] && ff=1
@@ -61,6 +62,7 @@ m = pin.buildModelFromUrdf(sys.argv[1], pin.JointModelFreeFlyer()) if sys.argv[3
 m.saveToBinary(sys.argv[2])' "$u" "$CACHE/models/$name.bin" "$ff"
   ARGS+=("$name=$CACHE/models/$name.bin")
   NAMES+=("$name")
+  FFS+=("$ff")
 done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
 echo "# robot           nv algo     median_ns     min_ns"
@@ -131,7 +133,11 @@ EOF
 # (--reps 1) on one robot and then ours on the same robot and algorithms, `tests/examples/calls.rs
 # --time 1` (a warm-up round, then CALLS calls timed), one process per algorithm; the median and
 # quartiles of the rounds' ratios. Table 3 compares Pinocchio's run with criterion's minutes later.
+# With CODEGEN=1, each round of a fixed-base robot also runs Pinocchio's code-generated functions
+# (step 1b's libraries, every flag set of CG_CFLAGS_SETS, the fastest per round), table 3c.
 if [ "${PIN_ROUNDS:-7}" -gt 0 ]; then
+  IFS='|' read -r -a CG_SETS <<< "${CG_CFLAGS_SETS:-"-O3 -march=native|-Ofast"}"
+  CG_CC=$(command -v "${CG_CC:-gcc}" || true)
   (cd "$ROOT" && cargo build -q --release -p dynamics-tests "${FEATURES[@]}" --example calls)
   EX=$CARGO_TARGET_DIR/release/examples/calls
   : > "$CACHE/interleaved.txt"
@@ -139,6 +145,13 @@ if [ "${PIN_ROUNDS:-7}" -gt 0 ]; then
     name=${NAMES[$i]}; model=${ARGS[$i]}
     for round in $(seq "${PIN_ROUNDS:-7}"); do
       "$BIN" --calls "$CALLS" --reps 1 "$model" | sed "s/^/pin $round /" >> "$CACHE/interleaved.txt"
+      if [ "${CODEGEN:-0}" = 1 ] && [ "${FFS[$i]}" = 0 ]; then
+        for flags in "${CG_SETS[@]}"; do
+          "$CACHE/pinocchio_codegen_bench" --calls "$CALLS" --reps 1 \
+            --lib-dir "$CACHE/codegen/$(printf '%s' "$flags" | tr -cs 'A-Za-z0-9._=' '_')" \
+            --cc "$CG_CC" --cflags "$flags" "$model" | grep -v '^#' | sed "s/^/cg $round /" >> "$CACHE/interleaved.txt"
+        done
+      fi
       for algo in $ALGOS; do
         { "$EX" "$name" "$algo" "$CALLS" --time 1 2>/dev/null || true; } | sed "s/^/ours $round /" >> "$CACHE/interleaved.txt"
       done
@@ -146,27 +159,36 @@ if [ "${PIN_ROUNDS:-7}" -gt 0 ]; then
   done
   "$VENV/bin/python" - "$CACHE/interleaved.txt" <<'EOF'
 import sys
-pin, ours, pairs = {}, {}, []
+pin, cg, ours = {}, {}, {}
 for line in open(sys.argv[1]):
     f = line.split()
     if f[0] == "pin" and len(f) == 7:
         pin[(f[2], f[4], f[1])] = float(f[5])
-        if (f[2], f[4]) not in pairs:
-            pairs.append((f[2], f[4]))
+    elif f[0] == "cg" and len(f) == 7 and f[4].startswith("cg_"):
+        # The fastest flag set of the round.
+        k = (f[2], f[4][3:], f[1])
+        cg[k] = min(float(f[5]), cg.get(k, float("inf")))
     elif f[0] == "ours" and len(f) == 5:
         ours[(f[2], f[3], f[1])] = float(f[4])
 med = lambda v: sorted(v)[len(v) // 2]
-rows = []
-for robot, algo in pairs:
-    rounds = [r for (b, a, r) in pin if (b, a) == (robot, algo) and (b, a, r) in ours]
-    if not rounds:
-        continue
-    ratios = sorted(pin[(robot, algo, r)] / ours[(robot, algo, r)] for r in rounds)
-    p, o, n = med([pin[(robot, algo, r)] for r in rounds]), med([ours[(robot, algo, r)] for r in rounds]), len(ratios)
-    rows.append(f"{robot:<16} {algo:<19} {p:8.1f} {o:8.1f} {med(ratios):6.1f}x {ratios[n // 4]:5.1f}-{ratios[(3 * n) // 4]:.1f}x {n:6d}")
-if rows:
-    print(f"\n{'robot':<16} {'interleaved':<19} {'pin_ns':>8} {'ours_ns':>8} {'ratio':>7} {'quartiles':>11} rounds")
-    print("\n".join(rows))
+def table(theirs, title, name):
+    rows, pairs = [], []
+    for (b, a, _r) in theirs:
+        if (b, a) not in pairs:
+            pairs.append((b, a))
+    for robot, algo in pairs:
+        rounds = [r for (b, a, r) in theirs if (b, a) == (robot, algo) and (b, a, r) in ours]
+        if not rounds:
+            continue
+        ratios = sorted(theirs[(robot, algo, r)] / ours[(robot, algo, r)] for r in rounds)
+        p, o, n = med([theirs[(robot, algo, r)] for r in rounds]), med([ours[(robot, algo, r)] for r in rounds]), len(ratios)
+        rows.append(f"{robot:<16} {algo:<19} {p:8.1f} {o:8.1f} {med(ratios):6.1f}x {ratios[n // 4]:5.1f}-{ratios[(3 * n) // 4]:.1f}x {n:6d}")
+    if rows:
+        print(f"\n{'robot':<16} {title:<19} {name:>8} {'ours_ns':>8} {'ratio':>7} {'quartiles':>11} rounds")
+        print("\n".join(rows))
+table(pin, "interleaved", "pin_ns")
+# 3c. Pinocchio's code generation (CODEGEN=1), the same rounds.
+table(cg, "codegen, interleaved", "cg_ns")
 EOF
 fi
 
