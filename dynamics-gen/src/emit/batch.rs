@@ -281,13 +281,13 @@ fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
 /// A copy's batch function that runs `body`, a body of instructions for one register of
 /// lanes (`L` = `lanes` states, not generic: [`super::dispatch`]'s `token_body_item`), on the
 /// `B` states `L` at a time (`B` a multiple of `L`; [`super::zmm`]): the statements of the
-/// copy, `copy`, and the item they call, `fill`. `elem`: `R` of `-> [R; B]`, `b` the name of
+/// copy `copy`, and the item they call, `copy_fill`. `elem`: `R` of `-> [R; B]`, `b` the name of
 /// `B`, `generics` and `args` the copy's; `attrs` its `cfg` and `target_feature`. `None` for a
 /// function without states.
 ///
-/// `fill` (`#[inline(never)]`, `extern "C"`) writes each register's results into the copy's
+/// `copy_fill` (`#[inline(never)]`, `extern "C"`) writes each register's results into the copy's
 /// uninitialised result through a pointer, and the copy returns it: the optimiser then hands
-/// `fill` the copy's return slot itself (LLVM's call-slot optimisation), so the `B` results are
+/// `copy_fill` the copy's return slot itself (LLVM's call-slot optimisation), so the `B` results are
 /// written once, where the caller wants them. Built in the copy's frame instead (a zeroed
 /// array, filled, returned), they were zeroed by a `memset` and copied out by a `memcpy`
 /// (Solo-12's inverse dynamics batch of 8: 1,152 bytes; G1's 2,240, which glibc copies with
@@ -302,7 +302,7 @@ fn zipped(names: &[Ident]) -> Option<(TokenStream, TokenStream)> {
 /// `B` = 8: 119 s in debug).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn per_register(
-    fill: &Ident,
+    copy: &Ident,
     body: &Ident,
     names: &[Ident],
     elem: &TokenStream,
@@ -313,7 +313,8 @@ pub(super) fn per_register(
     attrs: &TokenStream,
 ) -> Option<(TokenStream, TokenStream)> {
     let (pattern, states) = zipped(names)?;
-    let copy = quote! {
+    let fill = format_ident!("{}_fill", copy);
+    let statements = quote! {
         let mut out = ::core::mem::MaybeUninit::<[#elem; #b]>::uninit();
         // SAFETY: the function's contract: the copy's features.
         unsafe { self.#fill::<#b>(#(#names,)* &mut out) };
@@ -321,17 +322,9 @@ pub(super) fn per_register(
         // the `B` results.
         unsafe { out.assume_init() }
     };
-    let copy_name = fill.to_string();
-    let copy_name = copy_name.strip_suffix("_fill").unwrap_or(&copy_name);
     let doc = format!(
-        " The loop of [`Self::{copy_name}`]: [`Self::{body}`] on each register of {lanes} states, its results written into `out` (all `B` of them, `B` a multiple of {lanes})."
+        " The loop of [`Self::{copy}`]: [`Self::{body}`] on each register of {lanes} states, its results written into `out` (all `B` of them, `B` a multiple of {lanes})."
     );
-    let args: Vec<TokenTree> = args.clone().into_iter().collect();
-    let args = match args.last() {
-        Some(TokenTree::Punct(p)) if p.as_char() == ',' => &args[..args.len() - 1],
-        _ => &args[..],
-    };
-    let args: TokenStream = args.iter().cloned().collect();
     let item = quote! {
         #[doc = #doc]
         #[doc = ""]
@@ -351,7 +344,7 @@ pub(super) fn per_register(
             }
         }
     };
-    Some((copy, item))
+    Some((statements, item))
 }
 
 /// The impl block with each public `X_batch<const B: usize>` marked `#[inline(never)]` (a

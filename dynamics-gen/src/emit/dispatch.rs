@@ -193,6 +193,12 @@ impl Isa {
         }
     }
 
+    /// The attributes of a function compiled for it: [`Self::cfg`] and its `target_feature`s.
+    fn attrs(self) -> TokenStream {
+        let (cfg, features) = (self.cfg(), self.features());
+        quote!(#cfg #[target_feature(enable = #features)])
+    }
+
     /// Its `target_feature`s.
     fn features(self) -> &'static str {
         match self {
@@ -692,11 +698,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         let (Some(b), Some(elem)) = (generic_names.first(), array_elem(&ret)) else {
             return (plain.clone(), quote!());
         };
-        let fill = format_ident!("{}_fill", copy);
-        let (cfg, features) = (isa.cfg(), isa.features());
-        let attrs = quote!(#cfg #[target_feature(enable = #features)]);
         let Some((per_register, fill_item)) = super::batch::per_register(
-            &fill,
+            copy,
             &body_z,
             &arg_names,
             &elem,
@@ -704,7 +707,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             b,
             &const_generics,
             &args,
-            &attrs,
+            &isa.attrs(),
         ) else {
             return (plain.clone(), quote!());
         };
@@ -860,7 +863,7 @@ fn zmm_only(
             format_ident!("{}_body_{}", name, isa.suffix()),
         );
         let has = format_ident!("has_{}", isa.suffix());
-        let (cfg, features, prose) = (isa.cfg(), isa.features(), isa.prose());
+        let prose = isa.prose();
         let fast_doc = format!(
             " [`Self::{name}`] compiled for {prose}, for `B` a multiple of {lanes}: call it \
              only on a CPU that has the features [`Self::{has}`] checks."
@@ -872,17 +875,9 @@ fn zmm_only(
         );
         let body_item = token_body_item(isa, &body_z, b, &lanes, args, ret, &z_body, &body_doc);
         // (`None` for a function without states, which no batch function is.)
-        let attrs = quote!(#cfg #[target_feature(enable = #features)]);
+        let attrs = isa.attrs();
         let (per_register, fill_item) = super::batch::per_register(
-            &format_ident!("{}_fill", fast),
-            &body_z,
-            arg_names,
-            &elem,
-            &lanes,
-            b,
-            generics,
-            args,
-            &attrs,
+            &fast, &body_z, arg_names, &elem, &lanes, b, generics, args, &attrs,
         )
         .unwrap_or_else(|| (per_state.clone(), quote!()));
         let call = quote! {
@@ -892,8 +887,7 @@ fn zmm_only(
         };
         let items = quote! {
             #[doc = #fast_doc]
-            #cfg
-            #[target_feature(enable = #features)]
+            #attrs
             #[allow(unsafe_code, improper_ctypes_definitions)]
             unsafe extern "C" fn #fast<#generics>(#args) #ret {
                 if const { #b % #lanes == 0 } {
