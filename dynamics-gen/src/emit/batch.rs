@@ -144,6 +144,7 @@ pub fn batch_functions(
                 self_ty: self_ty.as_ref(),
                 lanes,
                 ready: &[],
+                pack: false,
             }
             .tokens()
         };

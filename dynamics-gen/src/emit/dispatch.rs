@@ -234,6 +234,8 @@ struct Used {
     any: bool,
     mul_add: bool,
     sin_cos: bool,
+    /// The vector helpers of packed bodies that the bodies call ([`super::pack`]).
+    vector: std::collections::BTreeSet<String>,
 }
 
 /// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
@@ -362,9 +364,11 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             }
         }
     });
+    let vector = vector_helpers(&cfg, &used.vector);
     quote! {
         #mul_add
         #sin_cos
+        #vector
 
         /// Whether this CPU has the AVX-512 features the dispatched functions are compiled for
         /// (the standard library's detection, cached). `extern "C"` and never inlined: its
@@ -1227,7 +1231,63 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
         "joint_sin_cos_rows",
     ]
     .iter()
+    .chain(&super::function::VECTOR_HELPERS)
     .any(|f| contains_ident(body, f))
+}
+
+/// The `_with::<WIDE>` forms of the vector helpers ([`super::function::vector_helpers`]):
+/// when `WIDE` (the AVX-512 and AVX2 copies, compiled with AVX2 and FMA), one AVX2
+/// instruction on the four lanes (`vfmadd…pd`, `vmulpd`, `vaddpd`, `vsubpd`, `vxorpd`);
+/// the same operations on the same values as the lanes' scalar forms, so the same bits.
+fn vector_helpers(cfg: &TokenStream, used: &std::collections::BTreeSet<String>) -> TokenStream {
+    let one = |name: &str, args: &[&str], op: TokenStream| {
+        let with = format_ident!("{}_with", name);
+        let plain = format_ident!("{}", name);
+        let args: Vec<Ident> = args.iter().map(|a| format_ident!("{}", a)).collect();
+        quote! {
+            #[inline(always)]
+            #[allow(unsafe_code)]
+            fn #with<const WIDE: bool>(#(#args: [f64; 4]),*) -> [f64; 4] {
+                #cfg
+                {
+                    if WIDE {
+                        use ::core::arch::x86_64::*;
+                        use ::core::mem::transmute;
+                        // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
+                        // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA;
+                        // `[f64; 4]` and `__m256d` are the same 32 bytes.
+                        return unsafe { transmute::<__m256d, [f64; 4]>(#op) };
+                    }
+                }
+                Self::#plain(#(#args),*)
+            }
+        }
+    };
+    let v = |a: &str| {
+        let a = format_ident!("{}", a);
+        quote!(transmute::<[f64; 4], __m256d>(#a))
+    };
+    let (a, b, c) = (v("a"), v("b"), v("c"));
+    let fma = one(
+        "v4_fma",
+        &["a", "b", "c"],
+        quote!(_mm256_fmadd_pd(#a, #b, #c)),
+    );
+    let mul = one("v4_mul", &["a", "b"], quote!(_mm256_mul_pd(#a, #b)));
+    let add = one("v4_add", &["a", "b"], quote!(_mm256_add_pd(#a, #b)));
+    let sub = one("v4_sub", &["a", "b"], quote!(_mm256_sub_pd(#a, #b)));
+    let neg = one(
+        "v4_neg",
+        &["a"],
+        quote!(_mm256_xor_pd(#a, _mm256_set1_pd(-0.0))),
+    );
+    let helpers = [fma, mul, add, sub, neg];
+    let used = super::function::VECTOR_HELPERS
+        .iter()
+        .zip(helpers)
+        .filter(|(name, _)| used.contains(**name))
+        .map(|(_, helper)| helper);
+    quote!(#(#used)*)
 }
 
 /// `body` with every `Self::mul_add(` turned into `Self::mul_add_with::<WIDE>(` (and
@@ -1412,6 +1472,15 @@ fn wide_tokens(
                 used.mul_add = true;
                 let call = quote!(mul_add_with::<WIDE>);
                 out.extend(call);
+            }
+            // The vector helpers of packed bodies: their AVX2 instructions when `WIDE`.
+            TokenTree::Ident(i)
+                if super::function::VECTOR_HELPERS.iter().any(|h| i == h)
+                    && after_self_path(&out) =>
+            {
+                used.vector.insert(i.to_string());
+                let with = format_ident!("{}_with", i);
+                out.extend(quote!(#with::<WIDE>));
             }
             // The batch bodies' helpers (on `Lanes`), as the two above.
             TokenTree::Ident(i) if i == "mul_add_lanes" && after_self_path(&out) => {

@@ -110,6 +110,25 @@ pub struct FunctionBody<'a> {
     /// When each node of `graph` is ready ([`crate::expr::reassociate::ready_times`]): which
     /// of two products an addition fuses. Empty until [`Self::tokens`] fills it.
     pub ready: &'a [u32],
+    /// Compute the rows of the outputs' columns (a pose's rotation columns and translation,
+    /// a 6-row Jacobian's `ω` and `v` of each column) as packs of 4-lane vector operations
+    /// where they are alike ([`super::pack`]): the kinematics. With `std`, for `f64`, in a
+    /// single-state body that is not split into parts.
+    pub pack: bool,
+}
+
+/// What the emitter knows of a body's packs ([`super::pack`]).
+struct Packed {
+    packing: super::pack::Packing,
+    /// Per pack: written inline into its user (a product that a multiply-add fuses).
+    inline: Vec<bool>,
+    /// Per pack: the largest node id among its nodes, where the body writes it.
+    last: Vec<usize>,
+    /// Per pack: its nodes that something other than the packs reads as a scalar.
+    scalars: Vec<Vec<ExprId>>,
+    /// The number of nodes of the graph: the vector of pack `k` is node `nodes + k` of the
+    /// body's bookkeeping (bindings, last uses).
+    nodes: usize,
 }
 
 /// The most `let` statements in one block: longer bodies are split into blocks (see
@@ -419,7 +438,9 @@ impl FunctionBody<'_> {
         let g = self.graph;
         let live = g.live(self.outputs);
         let uses = g.use_counts(self.outputs);
-        let mut bind: Vec<Binding> = vec![Binding::Inline; g.len()];
+        let packed = self.packed(&live, &uses);
+        let slots = g.len() + packed.as_ref().map_or(0, |p| p.packing.packs.len());
+        let mut bind: Vec<Binding> = vec![Binding::Inline; slots];
         let mut stmts = TokenStream::new();
 
         // Inputs.
@@ -516,7 +537,20 @@ impl FunctionBody<'_> {
         // The `let` statements after the inputs', and for each named node the index of the
         // last statement that reads it (`usize::MAX`: the outputs).
         let mut body: Vec<Statement> = Vec::new();
-        let mut last_use = vec![0usize; g.len()];
+        let mut last_use = vec![0usize; slots];
+        // Packed nodes read as scalars, and the packs' vectors, are named up front: a scalar
+        // user may come before the pack's last lane in graph order.
+        if let Some(p) = &packed {
+            for k in 0..p.packing.packs.len() {
+                if !p.inline[k] {
+                    bind[p.nodes + k] = Binding::Named(format_ident!("lanes{}", k));
+                }
+                for x in &p.scalars[k] {
+                    bind[x.index()] = Binding::Named(format_ident!("t{}", counter));
+                    counter += 1;
+                }
+            }
+        }
 
         // The sines and cosines of inputs (the joint angles) all at once, first: one call of
         // the vectorised `joint_sin_cos` helper (see `trig`).
@@ -567,6 +601,16 @@ impl FunctionBody<'_> {
             }
             let id = ExprId(k as u32);
             let node = g.node(id);
+            if let Some(p) = &packed {
+                if let Some((pack, _, _)) = p.packing.of[k] {
+                    if k == p.last[pack] && !p.inline[pack] {
+                        let statement =
+                            self.pack_statement(p, pack, &bind, body.len(), &mut last_use);
+                        body.push(statement);
+                    }
+                    continue;
+                }
+            }
             match node {
                 Node::Const(_) | Node::Input(_) => continue,
                 _ if inline_only[k] => continue,
@@ -713,6 +757,313 @@ impl FunctionBody<'_> {
         stmts.extend(chunked(body, &last_use, &bind, split));
         stmts.extend(value);
         stmts
+    }
+
+    /// The seeds of the packs: the rows of each column of a pose's rotation, and its
+    /// translation (see [`Self::pack`]).
+    fn pack_seeds(&self) -> Vec<[Option<ExprId>; super::pack::LANES]> {
+        let items = match self.output {
+            Output::Pose => 1,
+            Output::Poses(count) => count,
+            _ => return Vec::new(),
+        };
+        let mut seeds = Vec::new();
+        for item in 0..items {
+            let out = &self.outputs[item * 12..];
+            for c in 0..3 {
+                seeds.push([Some(out[c]), Some(out[3 + c]), Some(out[6 + c]), None]);
+            }
+            seeds.push([Some(out[9]), Some(out[10]), Some(out[11]), None]);
+        }
+        seeds
+    }
+
+    /// The packs of this body, when [`Self::pack`] asks for them and any is found.
+    fn packed(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
+        use super::pack::Operand;
+        let live_nodes = live.iter().filter(|&&l| l).count();
+        if !self.pack
+            || self.lanes.is_some()
+            || self.no_std
+            || self.scalar != Scalar::F64
+            || live_nodes > MAX_UNSPLIT_LETS
+        {
+            return None;
+        }
+        let g = self.graph;
+        let packing = super::pack::find(g, live, &self.pack_seeds())?;
+        let nodes = g.len();
+        // The scalar uses the packs take over: lane k of a pack operand, as the scalar code
+        // reads it (through the negations peeled into signs), read by lane k.
+        let mut consumed = vec![0u32; nodes];
+        let mut permuted = vec![false; packing.packs.len()];
+        for pack in &packing.packs {
+            for operand in &pack.operands {
+                let tops = match operand {
+                    Operand::Pack(_, tops) => tops,
+                    Operand::Permute(q, _, tops) => {
+                        permuted[*q] = true;
+                        tops
+                    }
+                    _ => continue,
+                };
+                for &(mut x, _) in tops.iter().flatten() {
+                    consumed[x.index()] += 1;
+                    while let Node::Neg(a) = *g.node(x) {
+                        x = a;
+                        consumed[x.index()] += 1;
+                    }
+                }
+            }
+        }
+        let mut members: Vec<Vec<ExprId>> = vec![Vec::new(); packing.packs.len()];
+        for (k, place) in packing.of.iter().enumerate() {
+            if let Some((pack, _, _)) = place {
+                members[*pack].push(ExprId(k as u32));
+            }
+        }
+        let inline = members
+            .iter()
+            .zip(&packing.packs)
+            .zip(&permuted)
+            .map(|((members, pack), &permuted)| {
+                pack.op == super::pack::Op::Mul
+                    && !permuted
+                    && members
+                        .iter()
+                        .all(|x| uses[x.index()] == 1 && consumed[x.index()] == 1)
+            })
+            .collect();
+        let last = members
+            .iter()
+            .map(|m| m.iter().map(|x| x.index()).max().unwrap_or(0))
+            .collect();
+        let scalars = members
+            .into_iter()
+            .map(|m| {
+                m.into_iter()
+                    .filter(|x| uses[x.index()] > consumed[x.index()])
+                    .collect()
+            })
+            .collect();
+        Some(Packed {
+            packing,
+            inline,
+            last,
+            scalars,
+            nodes,
+        })
+    }
+
+    /// `let lanesK = …;` for pack `k`, then its nodes that are read as scalars taken out.
+    fn pack_statement(
+        &self,
+        p: &Packed,
+        k: usize,
+        bind: &[Binding],
+        at: usize,
+        last_use: &mut [usize],
+    ) -> Statement {
+        let mut reads = Vec::new();
+        let value = self.pack_expr(p, k, bind, at, last_use, &mut reads);
+        let Binding::Named(name) = &bind[p.nodes + k] else {
+            unreachable!("a pack written as a statement is named")
+        };
+        let mut defined = vec![(name.clone(), ExprId((p.nodes + k) as u32))];
+        let mut tokens = quote!(let #name = #value;);
+        let scalars = &p.scalars[k];
+        if !scalars.is_empty() {
+            let lane_name = |j: usize| format_ident!("{}_{}", name, j);
+            let used: Vec<usize> = scalars
+                .iter()
+                .filter_map(|x| p.packing.of[x.index()].map(|(_, j, _)| j))
+                .collect();
+            let pats = (0..super::pack::LANES).map(|j| {
+                if used.contains(&j) {
+                    let l = lane_name(j);
+                    quote!(#l)
+                } else {
+                    quote!(_)
+                }
+            });
+            tokens.extend(quote!(let [#(#pats),*] = #name;));
+            for &x in scalars {
+                let (Some((_, j, neg)), Binding::Named(t)) =
+                    (p.packing.of[x.index()], &bind[x.index()])
+                else {
+                    unreachable!("a pack's scalars are named")
+                };
+                let l = lane_name(j);
+                tokens.extend(if neg {
+                    quote!(let #t = -#l;)
+                } else {
+                    quote!(let #t = #l;)
+                });
+                defined.push((t.clone(), x));
+            }
+        }
+        Statement {
+            defined,
+            tokens,
+            reads,
+        }
+    }
+
+    /// The vector operation of pack `k` (`Self::v4_fma(…)`, …), its reads noted.
+    fn pack_expr(
+        &self,
+        p: &Packed,
+        k: usize,
+        bind: &[Binding],
+        at: usize,
+        last_use: &mut [usize],
+        reads: &mut Vec<ExprId>,
+    ) -> TokenStream {
+        use super::pack::{Op, Operand};
+        let pack = &p.packing.packs[k];
+        let fused = |o: &Operand| matches!(o, Operand::Pack(q, _) if p.inline[*q]);
+        // When the operands of an inline product pack are ready.
+        let ready = |o: &Operand| match o {
+            Operand::Pack(q, _) => p.packing.packs[*q]
+                .lanes
+                .iter()
+                .flatten()
+                .map(|(x, _)| self.ready(*x))
+                .max()
+                .unwrap_or(0),
+            _ => 0,
+        };
+        let [a, b] = &pack.operands;
+        match pack.op {
+            Op::Add if fused(a) || fused(b) => {
+                // A product operand fuses into a multiply-add: of two, the one whose operands
+                // are ready later (as in the scalar code).
+                let fuse_a = fused(a) && (!fused(b) || ready(a) > ready(b));
+                let (m, c) = if fuse_a { (a, b) } else { (b, a) };
+                let c = self.pack_operand(p, c, bind, at, last_use, reads);
+                let Operand::Pack(q, _) = m else {
+                    unreachable!("fused operands are packs")
+                };
+                let [x, y] = &p.packing.packs[*q].operands;
+                let x = self.pack_operand(p, x, bind, at, last_use, reads);
+                let y = self.pack_operand(p, y, bind, at, last_use, reads);
+                quote!(Self::v4_fma(#x, #y, #c))
+            }
+            Op::Add => {
+                let a = self.pack_operand(p, a, bind, at, last_use, reads);
+                let b = self.pack_operand(p, b, bind, at, last_use, reads);
+                quote!(Self::v4_add(#a, #b))
+            }
+            Op::Mul => {
+                let a = self.pack_operand(p, a, bind, at, last_use, reads);
+                let b = self.pack_operand(p, b, bind, at, last_use, reads);
+                quote!(Self::v4_mul(#a, #b))
+            }
+        }
+    }
+
+    /// The tokens of a pack's operand, its reads noted.
+    fn pack_operand(
+        &self,
+        p: &Packed,
+        o: &super::pack::Operand,
+        bind: &[Binding],
+        at: usize,
+        last_use: &mut [usize],
+        reads: &mut Vec<ExprId>,
+    ) -> TokenStream {
+        use super::pack::Operand;
+        let scalar = |x: ExprId, neg: bool, reads: &mut Vec<ExprId>, last_use: &mut [usize]| {
+            self.note_uses(bind, x, at, last_use, reads);
+            if neg {
+                let e = self.operand(bind, x, 4);
+                quote!(-#e)
+            } else {
+                self.expr(bind, x)
+            }
+        };
+        match o {
+            Operand::Pack(q, _) if p.inline[*q] => self.pack_expr(p, *q, bind, at, last_use, reads),
+            Operand::Pack(q, _) => self.pack_name(p, *q, bind, at, last_use, reads),
+            Operand::Permute(q, map, _) => {
+                let name = self.pack_name(p, *q, bind, at, last_use, reads);
+                let used = |j: usize| map.iter().flatten().any(|&(i, _)| i == j);
+                let pats = (0..super::pack::LANES).map(|j| {
+                    if used(j) {
+                        let l = format_ident!("l{}", j);
+                        quote!(#l)
+                    } else {
+                        quote!(_)
+                    }
+                });
+                // Every lane in place, all negated: the vector negated (which the optimiser
+                // folds into a multiply-add's `vfnmadd`).
+                let negated = map
+                    .iter()
+                    .enumerate()
+                    .all(|(k, m)| m.is_none_or(|(j, neg)| j == k && neg));
+                if negated {
+                    return quote!(Self::v4_neg(#name));
+                }
+                let lanes = map.iter().map(|m| match m {
+                    Some((j, neg)) => {
+                        let l = format_ident!("l{}", j);
+                        if *neg {
+                            quote!(-#l)
+                        } else {
+                            quote!(#l)
+                        }
+                    }
+                    None => self.literal(0.0),
+                });
+                quote!({
+                    let [#(#pats),*] = #name;
+                    [#(#lanes),*]
+                })
+            }
+            Operand::Splat(x, signs) => {
+                let e = scalar(*x, false, reads, last_use);
+                if signs.iter().all(|&s| s >= 0.0) {
+                    quote!([#e; 4])
+                } else {
+                    let signs = signs.map(|s| self.literal(s));
+                    quote!(Self::v4_mul([#e; 4], [#(#signs),*]))
+                }
+            }
+            Operand::Consts(c) => {
+                let c = c.map(|c| self.literal(c));
+                quote!([#(#c),*])
+            }
+            Operand::Gather(lanes) => {
+                let e: Vec<TokenStream> = lanes
+                    .iter()
+                    .map(|l| match l {
+                        Some((x, neg)) => scalar(*x, *neg, reads, last_use),
+                        None => self.literal(0.0),
+                    })
+                    .collect();
+                quote!([#(#e),*])
+            }
+        }
+    }
+
+    /// The name of the vector of pack `q`, its read noted.
+    fn pack_name(
+        &self,
+        p: &Packed,
+        q: usize,
+        bind: &[Binding],
+        at: usize,
+        last_use: &mut [usize],
+        reads: &mut Vec<ExprId>,
+    ) -> TokenStream {
+        let id = ExprId((p.nodes + q) as u32);
+        last_use[id.index()] = last_use[id.index()].max(at);
+        reads.push(id);
+        let Binding::Named(name) = &bind[id.index()] else {
+            unreachable!("a pack read by name is named")
+        };
+        quote!(#name)
     }
 
     /// Records that statement `at` reads the named nodes in the inline expression of `id`
@@ -1304,6 +1655,54 @@ pub fn mul_add_helper(scalar: Scalar) -> TokenStream {
     }
 }
 
+/// The names of the vector helpers of [`vector_helpers`] (and, with the dispatch, of their
+/// `_with::<WIDE>` forms).
+pub const VECTOR_HELPERS: [&str; 5] = ["v4_fma", "v4_mul", "v4_add", "v4_sub", "v4_neg"];
+
+/// The private helpers on `[f64; 4]` that packed bodies call ([`super::pack`]): lane by lane
+/// the scalar operations (`v4_fma` through [`mul_add_helper`]'s `mul_add`), which the
+/// optimiser reduces to the scalar code the lanes stand for; the dispatched copies call
+/// their AVX2 forms instead ([`super::dispatch`]).
+pub fn vector_helpers() -> TokenStream {
+    quote! {
+        /// `a·b + c` lane by lane, fused as [`Self::mul_add`] is.
+        #[inline(always)]
+        fn v4_fma(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> [f64; 4] {
+            let ([a0, a1, a2, a3], [b0, b1, b2, b3], [c0, c1, c2, c3]) = (a, b, c);
+            [
+                Self::mul_add(a0, b0, c0),
+                Self::mul_add(a1, b1, c1),
+                Self::mul_add(a2, b2, c2),
+                Self::mul_add(a3, b3, c3),
+            ]
+        }
+        /// `a·b` lane by lane.
+        #[inline(always)]
+        fn v4_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+            [a0 * b0, a1 * b1, a2 * b2, a3 * b3]
+        }
+        /// `a + b` lane by lane.
+        #[inline(always)]
+        fn v4_add(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+            [a0 + b0, a1 + b1, a2 + b2, a3 + b3]
+        }
+        /// `a − b` lane by lane.
+        #[inline(always)]
+        fn v4_sub(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+            [a0 - b0, a1 - b1, a2 - b2, a3 - b3]
+        }
+        /// `−a` lane by lane.
+        #[inline(always)]
+        fn v4_neg(a: [f64; 4]) -> [f64; 4] {
+            let [a0, a1, a2, a3] = a;
+            [-a0, -a1, -a2, -a3]
+        }
+    }
+}
+
 /// The private `isometry(r, p)` helper of a generated impl: a rotation matrix (by rows) and a
 /// translation as `Isometry3`, the unit quaternion by Shepperd's method (from the largest of
 /// `1 + tr R`, `1 + 2R₀₀ − tr R`, …, so the square root's argument is at least 1 and no
@@ -1366,6 +1765,43 @@ mod tests {
         body[..body.find("\n    }\n").expect("its end")]
             .split_whitespace()
             .collect()
+    }
+
+    #[test]
+    fn a_general_geometry_pose_is_computed_on_packs_of_rows() {
+        let code = crate::Builder::new("rand7")
+            .no_runtime_trait()
+            .functions(["end_effector_pose", "jacobian_space", "gravity"])
+            .generate()
+            .expect("generates");
+        let pose = body_of(&code, "end_effector_pose");
+        assert!(pose.contains("Self::v4_fma_with::<WIDE"), "{pose}");
+        assert!(pose.contains("Self::isometry([[t0,t3,t6],[t1,t4,t7],[t2,t5,t8]],[t9,t10,t11])"));
+        assert!(code.contains("fn v4_fma_with<const WIDE: bool>"));
+        assert!(code.contains("_mm256_fmadd_pd"));
+        // Packs are for poses: not the Jacobian, not the dynamics.
+        assert!(!body_of(&code, "jacobian_space").contains("v4_"));
+        assert!(!body_of(&code, "gravity").contains("v4_"));
+        // Without the dispatch the scalar helpers, no intrinsics; no packs in `f32` or
+        // `no_std` code.
+        let plain = crate::Builder::new("rand7")
+            .no_runtime_trait()
+            .cpu_dispatch(false)
+            .functions(["end_effector_pose"])
+            .generate()
+            .expect("generates");
+        assert!(plain.contains("Self::v4_fma(") && !plain.contains("_mm256"));
+        for builder in [
+            crate::Builder::new("rand7").scalar(crate::Scalar::F32),
+            crate::Builder::new("rand7").no_std(true),
+        ] {
+            let code = builder
+                .no_runtime_trait()
+                .functions(["end_effector_pose"])
+                .generate()
+                .expect("generates");
+            assert!(!code.contains("v4_"));
+        }
     }
 
     #[test]

@@ -12,6 +12,7 @@ pub mod friction;
 pub mod function;
 pub mod given_sin_cos;
 pub mod literal;
+pub mod pack;
 pub mod provenance;
 pub mod regressor;
 pub mod schedule;
@@ -431,6 +432,15 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         function::mul_add_helper(options.scalar)
     };
+    // Packed bodies (`pack`, the kinematics' poses): where one calls them.
+    let packed = function::VECTOR_HELPERS
+        .iter()
+        .any(|h| dispatch::contains_ident(&kinematics_fns, h));
+    let vector_fns = if packed {
+        function::vector_helpers()
+    } else {
+        quote!()
+    };
     // Only revolute joints (mimic ones included) bring sines and cosines.
     let sin_cos_fn = if robot
         .joints
@@ -555,6 +565,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #kinematics_fns
 
             #mul_add_fn
+            #vector_fns
 
             #sin_cos_fn
         }
@@ -693,10 +704,28 @@ fn body_tokens(
     graph: &crate::expr::ExprGraph,
     args: &[Arg],
     outputs: &[crate::expr::ExprId],
+    shape: (usize, usize),
+    output: Output,
+    options: &Options,
+    nalgebra: &TokenStream,
+) -> TokenStream {
+    body_tokens_with(
+        name, graph, args, outputs, shape, output, options, nalgebra, false,
+    )
+}
+
+/// [`body_tokens`]; `pack`: the rows of the outputs' columns computed as packs of vector
+/// operations ([`pack`]), as the kinematics' are.
+fn body_tokens_with(
+    name: &str,
+    graph: &crate::expr::ExprGraph,
+    args: &[Arg],
+    outputs: &[crate::expr::ExprId],
     (rows, cols): (usize, usize),
     output: Output,
     options: &Options,
     nalgebra: &TokenStream,
+    pack: bool,
 ) -> TokenStream {
     if !emitted(options, name) {
         return quote!();
@@ -719,6 +748,7 @@ fn body_tokens(
         self_ty: self_ty.as_ref(),
         lanes: None,
         ready: &[],
+        pack,
     }
     .tokens()
 }
@@ -1203,13 +1233,14 @@ fn finish_helpers(item: &mut syn::ItemImpl) {
             .iter()
             .any(|(name, body)| name != helper && body.contains(helper))
     };
-    let keep = [
+    let mut keep = vec![
         ("mul_add", called("mul_add")),
         ("joint_sin_cos", called("joint_sin_cos")),
         ("sin_cos_n", called("joint_sin_cos")),
         ("sin_cos_into", called("joint_sin_cos")),
         ("sin_cos_lanes", called("sin_cos_lanes")),
     ];
+    keep.extend(function::VECTOR_HELPERS.iter().map(|&h| (h, called(h))));
     item.items.retain(|it| match it {
         syn::ImplItem::Fn(f) => keep
             .iter()
@@ -1286,7 +1317,7 @@ fn kinematics_functions(
     let body =
         |name: &str, outputs: &[crate::expr::ExprId], rows: usize, cols: usize, output: Output| {
             let q = std::slice::from_ref(q);
-            body_tokens(
+            body_tokens_with(
                 name,
                 &k.graph,
                 q,
@@ -1295,13 +1326,14 @@ fn kinematics_functions(
                 output,
                 options,
                 nalgebra,
+                true,
             )
         };
     let ee = &k.end_effector;
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
     let dot = |name: &str, outputs: &[crate::expr::ExprId]| {
         let shape = (6, nv_usize);
-        body_tokens(
+        body_tokens_with(
             name,
             &k.graph,
             args,
@@ -1310,6 +1342,7 @@ fn kinematics_functions(
             Output::Matrix,
             options,
             nalgebra,
+            true,
         )
     };
     let j_s_dot = dot("jacobian_space_dot", &k.jacobian_space_dot);
