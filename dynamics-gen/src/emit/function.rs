@@ -807,12 +807,20 @@ impl FunctionBody<'_> {
                     }
                     _ => continue,
                 };
-                for &(mut x, _) in tops.iter().flatten() {
+                for &(x, _) in tops.iter().flatten() {
                     consumed[x.index()] += 1;
-                    while let Node::Neg(a) = *g.node(x) {
-                        x = a;
-                        consumed[x.index()] += 1;
-                    }
+                }
+            }
+        }
+        // And the negations a pack holds read their operands in the same lane (`−m` and `m`
+        // are one lane, with other signs): so does an output's `−m` its `m`.
+        for (k, place) in packing.of.iter().enumerate() {
+            let Some((pack, lane, _)) = *place else {
+                continue;
+            };
+            if let Node::Neg(a) = *g.node(ExprId(k as u32)) {
+                if matches!(packing.of[a.index()], Some((p, l, _)) if p == pack && l == lane) {
+                    consumed[a.index()] += 1;
                 }
             }
         }
