@@ -92,7 +92,8 @@ pub struct Packing {
 
 /// The fewest scalar instructions a seed must save to be kept: lanes beyond the first of
 /// every pack, less the instructions its operands cost (a splat 1, with signs 2, a permutation
-/// 1 or 2, one per gathered lane).
+/// 1 or 2, one per gathered lane). The seed's own lanes are then taken out of the vector for
+/// the scalar code that reads them (a pose's quaternion), about two instructions more.
 pub const MIN_SAVED: i64 = 6;
 
 /// The pack of lanes whose operands are being built.
