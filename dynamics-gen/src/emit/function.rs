@@ -110,10 +110,12 @@ pub struct FunctionBody<'a> {
     /// When each node of `graph` is ready ([`crate::expr::reassociate::ready_times`]): which
     /// of two products an addition fuses. Empty until [`Self::tokens`] fills it.
     pub ready: &'a [u32],
-    /// Compute the rows of the outputs' columns (a pose's rotation columns and translation,
-    /// a 6-row Jacobian's `ω` and `v` of each column) as packs of 4-lane vector operations
-    /// where they are alike ([`super::pack`]): the kinematics. With `std`, for `f64`, in a
-    /// single-state body that is not split into parts.
+    /// Compute the rows of a pose's outputs (each rotation column's three entries, and the
+    /// translation) as packs of 4-lane vector operations where they are alike
+    /// ([`super::pack`]): the kinematics' bodies ask; only [`Output::Pose`] and
+    /// [`Output::Poses`] have seeds (the Jacobians' columns gained nothing, see
+    /// `docs/performance.md`). With `std`, for `f64`, in a single-state body that is not split
+    /// into parts.
     pub pack: bool,
 }
 
