@@ -1068,8 +1068,7 @@ impl FunctionBody<'_> {
         reads: &mut Vec<ExprId>,
     ) -> TokenStream {
         let id = ExprId((p.nodes + q) as u32);
-        last_use[id.index()] = last_use[id.index()].max(at);
-        reads.push(id);
+        self.note_uses(bind, id, at, last_use, reads);
         let Binding::Named(name) = &bind[id.index()] else {
             unreachable!("a pack read by name is named")
         };
