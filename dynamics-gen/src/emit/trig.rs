@@ -190,8 +190,8 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     // two-sum, with the correction of step 3: 10 more operations per element for about
     // half an ulp. Measured (the AVX2 copies of dispatched functions, old and new code in
     // one binary, medians of 15 interleaved rounds, three runs): `sin_cos` of 7 angles
-    // 18.4–20.3 → 15.8–16.3 ns; the UR5's, the Panda's and rand7's poses −10 to −15 %,
-    // `J_s` −6 to −14 %, gravity −1 to −10 %.
+    // 18.4–20.3 → 15.8–16.3 ns; the UR5's, the Panda's and rand7's poses −9 to −15 %,
+    // `J_s` −5 to −14 %, gravity 0 to −11 %.
     let reduce = if no_std {
         unfused
     } else {
