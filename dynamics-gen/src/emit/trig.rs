@@ -143,18 +143,14 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     };
     let (sin_poly, cos_poly) = (estrin(&sin_c), estrin(&cos_c));
     // `a·b + c`: one rounding where the code is compiled with FMA (or in the AVX-512 and AVX2
-    // copies of a dispatched function, `F`), two otherwise; `core` has no `mul_add`.
+    // copies of a dispatched function, `F`), two otherwise; `core` has no `mul_add`. `fused`
+    // also picks the reduction and whether the correction of step 3 runs.
     let fma = if no_std {
         quote!(let fma = |a: #t, b: #t, c: #t| a * b + c;)
     } else {
         quote! {
-            let fma = |a: #t, b: #t, c: #t| {
-                if F || cfg!(target_feature = "fma") {
-                    a.mul_add(b, c)
-                } else {
-                    a * b + c
-                }
-            };
+            let fused = F || cfg!(target_feature = "fma");
+            let fma = |a: #t, b: #t, c: #t| if fused { a.mul_add(b, c) } else { a * b + c };
         }
     };
     let sign_shift = proc_macro2::Literal::u32_unsuffixed(sign_shift);
@@ -209,7 +205,8 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         }
         .map(lit);
         quote! {
-            let (h, l) = if F || cfg!(target_feature = "fma") {
+            // Fused, r has no low part: `l` is not read (step 3 is skipped).
+            let (h, l) = if fused {
                 let h = fma(-k, #q1, x);
                 let h = fma(-k, #q2, h);
                 (fma(-k, #q3, h), 0.0)
@@ -224,7 +221,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         quote!(let (s, c) = (fma(l, c, s), fma(-l, s, c));)
     } else {
         quote! {
-            let (s, c) = if F || cfg!(target_feature = "fma") {
+            let (s, c) = if fused {
                 (s, c)
             } else {
                 (fma(l, c, s), fma(-l, s, c))
