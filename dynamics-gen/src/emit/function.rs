@@ -110,13 +110,24 @@ pub struct FunctionBody<'a> {
     /// When each node of `graph` is ready ([`crate::expr::reassociate::ready_times`]): which
     /// of two products an addition fuses. Empty until [`Self::tokens`] fills it.
     pub ready: &'a [u32],
-    /// Compute the rows of a pose's outputs (each rotation column's three entries, and the
-    /// translation) as packs of 4-lane vector operations where they are alike
-    /// ([`super::pack`]): the kinematics' bodies ask; only [`Output::Pose`] and
-    /// [`Output::Poses`] have seeds (the Jacobians' columns gained nothing, see
-    /// `docs/performance.md`). With `std`, for `f64`, in a single-state body that is not split
-    /// into parts.
-    pub pack: bool,
+    /// Which nodes to compute as packs of 4-lane vector operations where they are alike
+    /// ([`super::pack`], [`Packs`]). With `std`, for `f64`, in a single-state body that is
+    /// not split into parts.
+    pub pack: Packs,
+}
+
+/// Where a body's packs ([`super::pack`]) start from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Packs {
+    /// None: every node a scalar.
+    None,
+    /// The rows of a pose's outputs ([`Output::Pose`], [`Output::Poses`]): each rotation
+    /// column's three entries, and the translation (the kinematics; the Jacobians' columns
+    /// gained nothing, see `docs/performance.md`).
+    Rows,
+    /// Outputs of one shape ([`super::pack::alike_seeds`]): the same joint of a tree's alike
+    /// limbs (the dynamics).
+    Alike,
 }
 
 /// What the emitter knows of a body's packs ([`super::pack`]).
@@ -761,13 +772,15 @@ impl FunctionBody<'_> {
         stmts
     }
 
-    /// The seeds of the packs: the rows of each column of a pose's rotation, and its
-    /// translation (see [`Self::pack`]).
-    fn pack_seeds(&self) -> Vec<[Option<ExprId>; super::pack::LANES]> {
-        let items = match self.output {
-            Output::Pose => 1,
-            Output::Poses(count) => count,
-            _ => return Vec::new(),
+    /// The seeds of the packs (see [`Self::pack`]): the rows of each column of a pose's
+    /// rotation, and its translation; or the outputs of one shape.
+    fn pack_seeds(&self, live: &[bool]) -> Vec<[Option<ExprId>; super::pack::LANES]> {
+        let items = match (self.pack, self.output) {
+            (Packs::None, _) => return Vec::new(),
+            (Packs::Alike, _) => return super::pack::alike_seeds(self.graph, live, self.outputs),
+            (Packs::Rows, Output::Pose) => 1,
+            (Packs::Rows, Output::Poses(count)) => count,
+            (Packs::Rows, _) => return Vec::new(),
         };
         let mut seeds = Vec::new();
         for item in 0..items {
@@ -784,7 +797,7 @@ impl FunctionBody<'_> {
     fn packed(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
         use super::pack::Operand;
         let live_nodes = live.iter().filter(|&&l| l).count();
-        if !self.pack
+        if self.pack == Packs::None
             || self.lanes.is_some()
             || self.no_std
             || self.scalar != Scalar::F64
@@ -793,7 +806,7 @@ impl FunctionBody<'_> {
             return None;
         }
         let g = self.graph;
-        let packing = super::pack::find(g, live, &self.pack_seeds())?;
+        let packing = super::pack::find(g, live, &self.pack_seeds(live))?;
         let nodes = g.len();
         // The scalar uses the packs take over: lane k of a pack operand, as the scalar code
         // reads it (through the negations peeled into signs), read by lane k.

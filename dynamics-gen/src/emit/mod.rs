@@ -26,7 +26,7 @@ use crate::expand::task_space::{expand_task_space, TaskSpace, F_TIP};
 use crate::expand::{self, Dynamics, ForwardRoute, Q, QD, QDD, TAU};
 use crate::options::{upper_camel, Options, Scalar};
 use dynamics_model::Robot;
-use function::{Arg, FunctionBody, Output};
+use function::{Arg, FunctionBody, Output, Packs};
 use proc_macro2::{Ident, Span, TokenStream};
 pub use provenance::Provenance;
 use quote::{quote, ToTokens};
@@ -180,7 +180,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
     let body = |name: &str, outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
         let shape = (nv_usize, cols);
-        body_tokens(
+        body_tokens_with(
             name,
             &dynamics.graph,
             args,
@@ -189,6 +189,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             Output::Matrix,
             options,
             &nalgebra,
+            Packs::Alike,
         )
     };
     let q = Arg {
@@ -211,7 +212,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         group: TAU,
         len: nv_usize,
     };
-    let mass_matrix = body_tokens(
+    let mass_matrix = body_tokens_with(
         "mass_matrix",
         &dynamics.graph,
         std::slice::from_ref(&q),
@@ -220,6 +221,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         Output::StoredMatrix,
         options,
         &nalgebra,
+        Packs::Alike,
     );
     let coriolis = body("coriolis", &dynamics.coriolis, &[q.clone(), qd.clone()], 1);
     let gravity = body("gravity", &dynamics.gravity, std::slice::from_ref(&q), 1);
@@ -432,10 +434,26 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         function::mul_add_helper(options.scalar)
     };
-    // Packed bodies (`pack`, the kinematics' poses): where one calls them.
-    let packed = function::VECTOR_HELPERS
-        .iter()
-        .any(|h| dispatch::contains_ident(&kinematics_fns, h));
+    // Packed bodies (`pack`: the kinematics' poses, alike outputs): where one calls them.
+    let packed = [
+        &mass_matrix,
+        &coriolis,
+        &gravity,
+        &inverse,
+        &forward,
+        &kinetic,
+        &mass_matrix_dot,
+        &extras,
+        &derivative_fns,
+        &regressor_fns,
+        &kinematics_fns,
+    ]
+    .iter()
+    .any(|f| {
+        function::VECTOR_HELPERS
+            .iter()
+            .any(|h| dispatch::contains_ident(f, h))
+    });
     let vector_fns = if packed {
         function::vector_helpers()
     } else {
@@ -710,12 +728,23 @@ fn body_tokens(
     nalgebra: &TokenStream,
 ) -> TokenStream {
     body_tokens_with(
-        name, graph, args, outputs, shape, output, options, nalgebra, false,
+        name,
+        graph,
+        args,
+        outputs,
+        shape,
+        output,
+        options,
+        nalgebra,
+        Packs::None,
     )
 }
 
-/// [`body_tokens`]; `pack`: the rows of the outputs' columns computed as packs of vector
-/// operations ([`pack`]), as the kinematics' are.
+/// [`body_tokens`] with the packs `pack`: [`Packs::Rows`] for the kinematics' poses,
+/// [`Packs::Alike`] for the joint-space dynamics (`mass_matrix`, `coriolis`, `gravity`,
+/// `inverse_dynamics`, `forward_dynamics`), whose outputs of one shape (the same joint of a
+/// quadruped's four legs) are computed together. Measured on Solo-12 (`docs/performance.md`);
+/// the other functions are not packed.
 fn body_tokens_with(
     name: &str,
     graph: &crate::expr::ExprGraph,
@@ -725,7 +754,7 @@ fn body_tokens_with(
     output: Output,
     options: &Options,
     nalgebra: &TokenStream,
-    pack: bool,
+    pack: Packs,
 ) -> TokenStream {
     if !emitted(options, name) {
         return quote!();
@@ -1326,7 +1355,7 @@ fn kinematics_functions(
                 output,
                 options,
                 nalgebra,
-                true,
+                Packs::Rows,
             )
         };
     let ee = &k.end_effector;
@@ -1342,7 +1371,7 @@ fn kinematics_functions(
             Output::Matrix,
             options,
             nalgebra,
-            true,
+            Packs::Rows,
         )
     };
     let j_s_dot = dot("jacobian_space_dot", &k.jacobian_space_dot);

@@ -59,6 +59,7 @@ mod import;
 mod node;
 pub mod reassociate;
 pub mod sexp;
+pub mod shape;
 mod simplify;
 mod stats;
 mod verify;
