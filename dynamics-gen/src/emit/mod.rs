@@ -180,7 +180,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
     let body = |name: &str, outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
         let shape = (nv_usize, cols);
-        body_tokens_with(
+        body_tokens(
             name,
             &dynamics.graph,
             args,
@@ -189,7 +189,6 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             Output::Matrix,
             options,
             &nalgebra,
-            Packs::Alike,
         )
     };
     let q = Arg {
@@ -212,7 +211,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         group: TAU,
         len: nv_usize,
     };
-    let mass_matrix = body_tokens_with(
+    let mass_matrix = body_tokens(
         "mass_matrix",
         &dynamics.graph,
         std::slice::from_ref(&q),
@@ -221,7 +220,6 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         Output::StoredMatrix,
         options,
         &nalgebra,
-        Packs::Alike,
     );
     let coriolis = body("coriolis", &dynamics.coriolis, &[q.clone(), qd.clone()], 1);
     let gravity = body("gravity", &dynamics.gravity, std::slice::from_ref(&q), 1);
@@ -716,7 +714,10 @@ fn default_text(f: &expand::parameters::Field, defaults: &[f64; 13], robot: &Rob
 }
 
 /// The body of a generated function: `outputs` of `graph` as `output`, `(rows, cols)` its
-/// matrix shape, in the scalar type and trigonometry of `options`.
+/// matrix shape, in the scalar type and trigonometry of `options`; its outputs of one shape
+/// (the same joint of a quadruped's four legs, alike entries of a task-space matrix) computed
+/// together as packs ([`Packs::Alike`]; measured in `docs/performance.md`: Solo-12's functions
+/// 4–58 % faster, rand7's `Λ` 8 %, no function slower).
 fn body_tokens(
     name: &str,
     graph: &crate::expr::ExprGraph,
@@ -736,15 +737,11 @@ fn body_tokens(
         output,
         options,
         nalgebra,
-        Packs::None,
+        Packs::Alike,
     )
 }
 
-/// [`body_tokens`] with the packs `pack`: [`Packs::Rows`] for the kinematics' poses,
-/// [`Packs::Alike`] for the joint-space dynamics (`mass_matrix`, `coriolis`, `gravity`,
-/// `inverse_dynamics`, `forward_dynamics`), whose outputs of one shape (the same joint of a
-/// quadruped's four legs) are computed together. Measured on Solo-12 (`docs/performance.md`);
-/// the other functions are not packed.
+/// [`body_tokens`] with the packs `pack` ([`Packs::Rows`]: the kinematics' poses).
 fn body_tokens_with(
     name: &str,
     graph: &crate::expr::ExprGraph,
