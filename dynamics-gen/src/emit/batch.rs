@@ -144,7 +144,8 @@ pub fn batch_functions(
                 self_ty: self_ty.as_ref(),
                 lanes,
                 ready: &[],
-                pack: Packs::None,
+                pack: Packs::Alike,
+                plan: None,
             }
             .tokens()
         };

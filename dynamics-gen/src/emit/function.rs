@@ -114,6 +114,9 @@ pub struct FunctionBody<'a> {
     /// ([`super::pack`], [`Packs`]). With `std`, for `f64`, in a single-state body that is
     /// not split into parts.
     pub pack: Packs,
+    /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
+    /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].
+    pub plan: Option<&'a Plan>,
 }
 
 /// Where a body's packs ([`super::pack`]) start from.
@@ -128,6 +131,18 @@ pub enum Packs {
     /// Outputs of one shape ([`super::pack::alike_seeds`]): the same joint of a tree's alike
     /// limbs (the dynamics).
     Alike,
+}
+
+/// What a batch body does as the single-state body's packs do, so that each state's results
+/// are the same bits as a single call's: a packed sum fuses the product its pack fuses (or
+/// none), and a packed product is never fused by a scalar sum nor written `(c·u)·w` (the
+/// pack computes `c·(u·w)`; a scalar reads it from its lane). The pack's lanes are the scalar
+/// code's operations otherwise (signs aside, which round alike).
+pub struct Plan {
+    /// Per node: in a pack.
+    packed: Vec<bool>,
+    /// Per packed sum or difference: the product it fuses, if any.
+    fuses: Vec<Option<ExprId>>,
 }
 
 /// What the emitter knows of a body's packs ([`super::pack`]).
@@ -437,13 +452,79 @@ impl FunctionBody<'_> {
             None => reassociate::reassociate(self.graph, self.outputs),
         };
         let ready = reassociate::ready_times(&graph);
-        FunctionBody {
+        let body = FunctionBody {
             graph: &graph,
             outputs: &outputs,
             ready: &ready,
             ..*self
+        };
+        if self.lanes.is_none() {
+            return body.tokens_as_given();
+        }
+        let live = graph.live(&outputs);
+        let uses = graph.use_counts(&outputs);
+        let plan = body.packs(&live, &uses).map(|p| body.plan(&p));
+        FunctionBody {
+            plan: plan.as_ref(),
+            ..body
         }
         .tokens_as_given()
+    }
+
+    /// The [`Plan`] of the packs `p` (see there).
+    fn plan(&self, p: &Packed) -> Plan {
+        use super::pack::{Op, Operand};
+        let n = self.graph.len();
+        let mut packed = vec![false; n];
+        let mut fuses = vec![None; n];
+        for (k, place) in p.packing.of.iter().enumerate() {
+            packed[k] = place.is_some();
+        }
+        for pack in &p.packing.packs {
+            if pack.op != Op::Add {
+                continue;
+            }
+            let Some(m) = self.fused_operand(p, pack) else {
+                continue;
+            };
+            let Operand::Pack(q, _) = m else {
+                unreachable!("fused operands are packs")
+            };
+            for (lane, product) in pack.lanes.iter().zip(&p.packing.packs[*q].lanes) {
+                if let (Some((x, _)), Some((m, _))) = (lane, product) {
+                    fuses[x.index()] = Some(*m);
+                }
+            }
+        }
+        Plan { packed, fuses }
+    }
+
+    /// The operand of the sum pack `pack` that its multiply-add fuses: of two inline products,
+    /// the one whose operands are ready later (as in the scalar code).
+    fn fused_operand<'p>(
+        &self,
+        p: &Packed,
+        pack: &'p super::pack::Pack,
+    ) -> Option<&'p super::pack::Operand> {
+        use super::pack::Operand;
+        let fused = |o: &Operand| matches!(o, Operand::Pack(q, _) if p.inline[*q]);
+        // When the operands of an inline product pack are ready.
+        let ready = |o: &Operand| match o {
+            Operand::Pack(q, _) => p.packing.packs[*q]
+                .lanes
+                .iter()
+                .flatten()
+                .map(|(x, _)| self.ready(*x))
+                .max()
+                .unwrap_or(0),
+            _ => 0,
+        };
+        let [a, b] = &pack.operands;
+        if !fused(a) && !fused(b) {
+            return None;
+        }
+        let fuse_a = fused(a) && (!fused(b) || ready(a) > ready(b));
+        Some(if fuse_a { a } else { b })
     }
 
     /// [`Self::tokens`] for the graph as it is.
@@ -672,7 +753,7 @@ impl FunctionBody<'_> {
                     if needs_let {
                         let name = format_ident!("t{}", counter);
                         counter += 1;
-                        let value = self.op(&bind, node);
+                        let value = self.op(&bind, ExprId(k as u32));
                         let mut reads = Vec::new();
                         for o in node.operands() {
                             self.note_uses(&bind, o, body.len(), &mut last_use, &mut reads);
@@ -795,10 +876,17 @@ impl FunctionBody<'_> {
 
     /// The packs of this body, when [`Self::pack`] asks for them and any is found.
     fn packed(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
+        if self.lanes.is_some() {
+            return None;
+        }
+        self.packs(live, uses)
+    }
+
+    /// The packs of this body as a single-state body (a batch body's [`Plan`]).
+    fn packs(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
         use super::pack::Operand;
         let live_nodes = live.iter().filter(|&&l| l).count();
         if self.pack == Packs::None
-            || self.lanes.is_some()
             || self.no_std
             || self.scalar != Scalar::F64
             || live_nodes > MAX_UNSPLIT_LETS
@@ -944,24 +1032,16 @@ impl FunctionBody<'_> {
     ) -> TokenStream {
         use super::pack::{Op, Operand};
         let pack = &p.packing.packs[k];
-        let fused = |o: &Operand| matches!(o, Operand::Pack(q, _) if p.inline[*q]);
-        // When the operands of an inline product pack are ready.
-        let ready = |o: &Operand| match o {
-            Operand::Pack(q, _) => p.packing.packs[*q]
-                .lanes
-                .iter()
-                .flatten()
-                .map(|(x, _)| self.ready(*x))
-                .max()
-                .unwrap_or(0),
-            _ => 0,
-        };
         let [a, b] = &pack.operands;
+        let fused = if pack.op == Op::Add {
+            self.fused_operand(p, pack)
+        } else {
+            None
+        };
         match pack.op {
-            Op::Add if fused(a) || fused(b) => {
-                // A product operand fuses into a multiply-add: of two, the one whose operands
-                // are ready later (as in the scalar code).
-                let fuse_a = fused(a) && (!fused(b) || ready(a) > ready(b));
+            Op::Add if fused.is_some() => {
+                // A product operand fuses into a multiply-add ([`Self::fused_operand`]).
+                let fuse_a = fused.is_some_and(|m| std::ptr::eq(m, a));
                 let (m, c) = if fuse_a { (a, b) } else { (b, a) };
                 let c = self.pack_operand(p, c, bind, at, last_use, reads);
                 let Operand::Pack(q, _) = m else {
@@ -1366,7 +1446,7 @@ impl FunctionBody<'_> {
     fn expr(&self, bind: &[Binding], id: ExprId) -> TokenStream {
         match &bind[id.index()] {
             Binding::Named(name) => quote!(#name),
-            Binding::Inline => self.op(bind, self.graph.node(id)),
+            Binding::Inline => self.op(bind, id),
         }
     }
 
@@ -1386,8 +1466,11 @@ impl FunctionBody<'_> {
             return 4;
         }
         match *self.graph.node(id) {
-            Node::Add(a, b) if self.fused(bind, a) || self.fused(bind, b) => 4,
-            Node::Sub(a, b) if self.fused(bind, a) || self.fused(bind, b) => 4,
+            Node::Add(a, b) | Node::Sub(a, b)
+                if self.fuses(bind, id, a) || self.fuses(bind, id, b) =>
+            {
+                4
+            }
             Node::Add(..) | Node::Sub(..) => 1,
             Node::Mul(..) | Node::Div(..) => 2,
             Node::Neg(_) => 3,
@@ -1403,6 +1486,16 @@ impl FunctionBody<'_> {
         !self.no_std
             && matches!(bind[id.index()], Binding::Inline)
             && matches!(self.graph.node(id), Node::Mul(..))
+            && self.plan.is_none_or(|plan| !plan.packed[id.index()])
+    }
+
+    /// Whether the sum or difference `x` fuses its operand `id` ([`Self::fused`]); with a
+    /// [`Plan`], a packed `x` fuses what its pack fuses.
+    fn fuses(&self, bind: &[Binding], x: ExprId, id: ExprId) -> bool {
+        match self.plan {
+            Some(plan) if plan.packed[x.index()] => plan.fuses[x.index()] == Some(id),
+            _ => self.fused(bind, id),
+        }
     }
 
     /// `Self::mul_add(x, y, c)` for the inline product `p = x·y` (`−x` if `negate`).
@@ -1410,7 +1503,8 @@ impl FunctionBody<'_> {
         let Node::Mul(x, y) = *self.graph.node(p) else {
             unreachable!("fused() admits products only")
         };
-        let (x, y) = match self.late_factor(bind, x, y) {
+        let packed = self.plan.is_some_and(|plan| plan.packed[p.index()]);
+        let (x, y) = match self.late_factor(bind, x, y).filter(|_| !packed) {
             Some((u, w)) => {
                 let x = self.operand(bind, x, 2);
                 let u = self.operand(bind, u, 3);
@@ -1448,6 +1542,9 @@ impl FunctionBody<'_> {
     /// constant factors outermost, `c·(u·w)`, its normal form.)
     fn late_factor(&self, bind: &[Binding], x: ExprId, y: ExprId) -> Option<(ExprId, ExprId)> {
         self.graph.as_const(x)?;
+        if self.plan.is_some_and(|plan| plan.packed[y.index()]) {
+            return None;
+        }
         if !matches!(bind[y.index()], Binding::Inline) {
             return None;
         }
@@ -1476,8 +1573,11 @@ impl FunctionBody<'_> {
         Some(quote!(#c * #x))
     }
 
-    fn op(&self, bind: &[Binding], node: &Node) -> TokenStream {
-        match *node {
+    fn op(&self, bind: &[Binding], id: ExprId) -> TokenStream {
+        // With a batch's plan, a packed product computes `c·(u·w)` as its pack does.
+        let plain = self.plan.is_some_and(|plan| plan.packed[id.index()]);
+        let fused = |x: ExprId| self.fuses(bind, id, x);
+        match *self.graph.node(id) {
             Node::Const(c) => self.literal(c.value()),
             Node::Input(x) => {
                 let name = format_ident!("in{}_{}", x.group, x.index);
@@ -1487,27 +1587,24 @@ impl FunctionBody<'_> {
                 let a = self.operand(bind, a, 4);
                 quote!(-#a)
             }
-            Node::Add(a, b) if self.fused(bind, a) || self.fused(bind, b) => {
+            Node::Add(a, b) if fused(a) || fused(b) => {
                 // A product operand fuses into a multiply-add: of two, the one whose operands
                 // are ready later (the other is computed meanwhile).
-                let fuse_a =
-                    self.fused(bind, a) && (!self.fused(bind, b) || self.ready(a) > self.ready(b));
+                let fuse_a = fused(a) && (!fused(b) || self.ready(a) > self.ready(b));
                 let (p, c) = if fuse_a { (a, b) } else { (b, a) };
                 self.mul_add(bind, p, false, self.expr(bind, c))
             }
-            Node::Sub(a, b)
-                if self.fused(bind, a) && self.fused(bind, b) && self.ready(a) > self.ready(b) =>
-            {
+            Node::Sub(a, b) if fused(a) && fused(b) && self.ready(a) > self.ready(b) => {
                 // `x·y − b = x·y + (−b)`, the later product fused.
                 let c = self.operand(bind, b, 4);
                 self.mul_add(bind, a, false, quote!(-#c))
             }
-            Node::Sub(a, b) if self.fused(bind, b) => {
+            Node::Sub(a, b) if fused(b) => {
                 // `a − x·y = (−x)·y + a`.
                 let c = self.expr(bind, a);
                 self.mul_add(bind, b, true, c)
             }
-            Node::Sub(a, b) if self.fused(bind, a) => {
+            Node::Sub(a, b) if fused(a) => {
                 // `x·y − b = x·y + (−b)`.
                 let c = self.operand(bind, b, 4);
                 self.mul_add(bind, a, false, quote!(-#c))
@@ -1530,7 +1627,7 @@ impl FunctionBody<'_> {
                 quote!(#a - #b)
             }
             Node::Mul(a, b) => {
-                if let Some((u, w)) = self.late_factor(bind, a, b) {
+                if let Some((u, w)) = self.late_factor(bind, a, b).filter(|_| !plain) {
                     // `c·(u·w)` as `(c·u)·w`: one multiplication after the later factor.
                     let (a, u, w) = (
                         self.operand(bind, a, 2),
@@ -1567,7 +1664,7 @@ impl FunctionBody<'_> {
             Node::Sin(a) | Node::Cos(a) => {
                 // Only reached for a sin/cos bound by the trig pass; fall back to a call.
                 let a = self.expr(bind, a);
-                let f = if matches!(node, Node::Sin(_)) {
+                let f = if matches!(self.graph.node(id), Node::Sin(_)) {
                     "sin"
                 } else {
                     "cos"

@@ -775,6 +775,7 @@ fn body_tokens_with(
         lanes: None,
         ready: &[],
         pack,
+        plan: None,
     }
     .tokens()
 }
