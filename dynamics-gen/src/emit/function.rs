@@ -1503,8 +1503,7 @@ impl FunctionBody<'_> {
         let Node::Mul(x, y) = *self.graph.node(p) else {
             unreachable!("fused() admits products only")
         };
-        let packed = self.plan.is_some_and(|plan| plan.packed[p.index()]);
-        let (x, y) = match self.late_factor(bind, x, y).filter(|_| !packed) {
+        let (x, y) = match self.late_factor(bind, p) {
             Some((u, w)) => {
                 let x = self.operand(bind, x, 2);
                 let u = self.operand(bind, u, 3);
@@ -1536,13 +1535,20 @@ impl FunctionBody<'_> {
         }
     }
 
-    /// For the product `x·y` of a constant `x` and an inline product `y = u·w` whose factors
-    /// are ready at different times: `(u, w)` with `w` the later, so that the product is
-    /// written `(x·u)·w` and only one multiplication waits for `w`. (The graph keeps
-    /// constant factors outermost, `c·(u·w)`, its normal form.)
-    fn late_factor(&self, bind: &[Binding], x: ExprId, y: ExprId) -> Option<(ExprId, ExprId)> {
+    /// For the product `p = x·y` of a constant `x` and an inline product `y = u·w` whose
+    /// factors are ready at different times: `(u, w)` with `w` the later, so that the product
+    /// is written `(x·u)·w` and only one multiplication waits for `w`. (The graph keeps
+    /// constant factors outermost, `c·(u·w)`, its normal form.) Never where a batch's
+    /// [`Plan`] has `p` or `y` in a pack, which computes `c·(u·w)`.
+    fn late_factor(&self, bind: &[Binding], p: ExprId) -> Option<(ExprId, ExprId)> {
+        let Node::Mul(x, y) = *self.graph.node(p) else {
+            return None;
+        };
         self.graph.as_const(x)?;
-        if self.plan.is_some_and(|plan| plan.packed[y.index()]) {
+        if self
+            .plan
+            .is_some_and(|plan| plan.packed[p.index()] || plan.packed[y.index()])
+        {
             return None;
         }
         if !matches!(bind[y.index()], Binding::Inline) {
@@ -1574,8 +1580,6 @@ impl FunctionBody<'_> {
     }
 
     fn op(&self, bind: &[Binding], id: ExprId) -> TokenStream {
-        // With a batch's plan, a packed product computes `c·(u·w)` as its pack does.
-        let plain = self.plan.is_some_and(|plan| plan.packed[id.index()]);
         let fused = |x: ExprId| self.fuses(bind, id, x);
         match *self.graph.node(id) {
             Node::Const(c) => self.literal(c.value()),
@@ -1627,7 +1631,7 @@ impl FunctionBody<'_> {
                 quote!(#a - #b)
             }
             Node::Mul(a, b) => {
-                if let Some((u, w)) = self.late_factor(bind, a, b).filter(|_| !plain) {
+                if let Some((u, w)) = self.late_factor(bind, id) {
                     // `c·(u·w)` as `(c·u)·w`: one multiplication after the later factor.
                     let (a, u, w) = (
                         self.operand(bind, a, 2),
