@@ -49,17 +49,24 @@ const PORTABLE: &[&str] = &[
 ];
 
 /// The cases generated a second time in f32 (std, dispatched), as modules `f32_<case>`: the
-/// arms the benchmark times, so that `cargo bench` sets f32 beside f64 on the same robot
-/// (`bench_f32!` in benches/dynamics.rs). Every comparison test runs on them as on the others;
+/// arms and the quadruped the benchmark times, so that `cargo bench` sets f32 beside f64 on
+/// the same robot (`bench_f32!` in benches/dynamics.rs); Solo-12's four alike legs are
+/// computed in the lanes of `[f32; 4]` packs. Every comparison test runs on them as on the others;
 /// they have no derivative functions ([`WITHOUT_DERIVATIVES`], for compile time: the f32
 /// derivatives are compiled and tested on the random f32 chains and trees, `random_104_f32`
 /// and others).
-const F32: &[&str] = &["urdf_ur5", "urdf_panda", "urdf_rand7"];
+const F32: &[&str] = &["urdf_ur5", "urdf_panda", "urdf_rand7", "tree_solo12"];
 
 /// The dispatched cases whose AVX-512 and AVX2 copies are run side by side
 /// (`tests/dispatched_copies.rs`): each module gets `dispatched_copies_differ`, which may call
 /// the copies directly, as only code in the module can.
-const COPIES: &[&str] = &["shipped_ur5", "urdf_panda", "tree_solo12", "random_104_f32"];
+const COPIES: &[&str] = &[
+    "shipped_ur5",
+    "urdf_panda",
+    "tree_solo12",
+    "random_104_f32",
+    "f32_tree_solo12",
+];
 
 /// The batch cases whose AVX2 bodies of instructions (`dynamics-gen/src/emit/zmm.rs`) are
 /// called directly (`tests/dispatched_copies.rs`), as a CPU with AVX-512 runs them through the
@@ -122,6 +129,7 @@ const WITHOUT_DERIVATIVES: &[&str] = &[
     "f32_urdf_ur5",
     "f32_urdf_panda",
     "f32_urdf_rand7",
+    "f32_tree_solo12",
 ];
 
 /// The cases whose batch functions (`*_batch`) the tests instantiate (`with_batch_cases!`):
@@ -150,6 +158,7 @@ const BATCH: &[&str] = &[
     "runtime_tree_208_f64",
     "lagrangian_shipped_ur5",
     "tree_solo12",
+    "f32_tree_solo12",
 ];
 
 /// The cases generated a second time by the Lagrangian route (`Method::Lagrangian`), as
@@ -192,6 +201,7 @@ const SAMPLE: &[&str] = &[
     "f32_urdf_ur5",
     "f32_urdf_panda",
     "f32_urdf_rand7",
+    "f32_tree_solo12",
     "portable_shipped_ur5",
 ];
 

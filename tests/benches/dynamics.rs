@@ -740,6 +740,7 @@ fn benches(c: &mut Criterion) {
     );
     bench_f32!(c, "panda", urdf_panda, f32_urdf_panda, 7, 7);
     bench_f32!(c, "rand7", urdf_rand7, f32_urdf_rand7, 7, 7);
+    bench_f32!(c, "solo12", tree_solo12, f32_tree_solo12, 19, 18);
     bench_batch!(c, "ur5", urdf_ur5, 6, 6);
     bench_batch!(c, "panda", urdf_panda, 7, 7);
     bench_batch!(c, "rand7", urdf_rand7, 7, 7);

@@ -2,9 +2,9 @@
 //! (`dynamics-gen/src/emit/dispatch.rs`), so the two must give the same bits. A machine with
 //! AVX-512 runs only the AVX-512 copy through the public functions, and a machine without it
 //! only the AVX2 one; here both are called directly, on the UR5, the Panda, Solo-12 (a floating
-//! tree) and an f32 chain, at 256 random states each. Where the CPU lacks either instruction set, or
-//! the binary is compiled with AVX-512 or with AVX2 and FMA (no such pair of copies), the test
-//! says so and checks nothing.
+//! tree, in f64 and in f32: its legs in `[f32; 4]` packs) and an f32 chain, at 256 random
+//! states each. Where the CPU lacks either instruction set, or the binary is compiled with
+//! AVX-512 or with AVX2 and FMA (no such pair of copies), the test says so and checks nothing.
 //!
 //! The batch functions' AVX2 bodies of instructions (the runtime's `Avx2` token) run through
 //! the public functions on a machine with AVX-512 only where `B` fills AVX2 registers but not
@@ -69,7 +69,7 @@ fn compare(
 ))]
 #[test]
 fn avx2_copies_give_the_avx512_copies_bits() {
-    let cases: [(&str, Differ, (usize, usize)); 4] = [
+    let cases: [(&str, Differ, (usize, usize)); 5] = [
         (
             "shipped_ur5",
             dynamics_tests::generated::shipped_ur5::dispatched_copies_differ,
@@ -89,6 +89,11 @@ fn avx2_copies_give_the_avx512_copies_bits() {
             "random_104_f32",
             dynamics_tests::generated::random_104_f32::dispatched_copies_differ,
             dynamics_tests::generated::random_104_f32::COPIES_DIMS,
+        ),
+        (
+            "f32_tree_solo12",
+            dynamics_tests::generated::f32_tree_solo12::dispatched_copies_differ,
+            dynamics_tests::generated::f32_tree_solo12::COPIES_DIMS,
         ),
     ];
     compare(

@@ -364,7 +364,7 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             }
         }
     });
-    let vector = vector_helpers(&cfg, &used.vector);
+    let vector = vector_helpers(&cfg, &used.vector, scalar);
     quote! {
         #mul_add
         #sin_cos
@@ -1237,9 +1237,19 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 
 /// The `_with::<WIDE>` forms of the vector helpers ([`super::function::vector_helpers`]):
 /// when `WIDE` (the AVX-512 and AVX2 copies, compiled with AVX2 and FMA), one AVX2
-/// instruction on the four lanes (`vfmadd…pd`, `vmulpd`, `vaddpd`, `vsubpd`, `vxorpd`);
-/// the same operations on the same values as the lanes' scalar forms, so the same bits.
-fn vector_helpers(cfg: &TokenStream, used: &std::collections::BTreeSet<String>) -> TokenStream {
+/// instruction on the four lanes (`vfmadd…pd`, `vmulpd`, `vaddpd`, `vsubpd`, `vxorpd` on a
+/// 256-bit register; for `f32` the `…ps` forms on a 128-bit one); the same operations on the
+/// same values as the lanes' scalar forms, so the same bits.
+fn vector_helpers(
+    cfg: &TokenStream,
+    used: &std::collections::BTreeSet<String>,
+    scalar: Scalar,
+) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    let reg = match scalar {
+        Scalar::F64 => quote!(__m256d),
+        Scalar::F32 => quote!(__m128),
+    };
     let one = |name: &str, args: &[&str], op: TokenStream| {
         let with = format_ident!("{}_with", name);
         let plain = format_ident!("{}", name);
@@ -1247,7 +1257,7 @@ fn vector_helpers(cfg: &TokenStream, used: &std::collections::BTreeSet<String>) 
         quote! {
             #[inline(always)]
             #[allow(unsafe_code)]
-            fn #with<const WIDE: bool>(#(#args: [f64; 4]),*) -> [f64; 4] {
+            fn #with<const WIDE: bool>(#(#args: [#t; 4]),*) -> [#t; 4] {
                 #cfg
                 {
                     if WIDE {
@@ -1255,8 +1265,9 @@ fn vector_helpers(cfg: &TokenStream, used: &std::collections::BTreeSet<String>) 
                         use ::core::mem::transmute;
                         // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
                         // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA;
-                        // `[f64; 4]` and `__m256d` are the same 32 bytes.
-                        return unsafe { transmute::<__m256d, [f64; 4]>(#op) };
+                        // `[T; 4]` and the register type are the same 32 (`f64`) or 16 (`f32`)
+                        // bytes.
+                        return unsafe { transmute::<#reg, [#t; 4]>(#op) };
                     }
                 }
                 Self::#plain(#(#args),*)
@@ -1265,22 +1276,33 @@ fn vector_helpers(cfg: &TokenStream, used: &std::collections::BTreeSet<String>) 
     };
     let v = |a: &str| {
         let a = format_ident!("{}", a);
-        quote!(transmute::<[f64; 4], __m256d>(#a))
+        quote!(transmute::<[#t; 4], #reg>(#a))
     };
     let (a, b, c) = (v("a"), v("b"), v("c"));
-    let fma = one(
-        "v4_fma",
-        &["a", "b", "c"],
-        quote!(_mm256_fmadd_pd(#a, #b, #c)),
-    );
-    let mul = one("v4_mul", &["a", "b"], quote!(_mm256_mul_pd(#a, #b)));
-    let add = one("v4_add", &["a", "b"], quote!(_mm256_add_pd(#a, #b)));
-    let sub = one("v4_sub", &["a", "b"], quote!(_mm256_sub_pd(#a, #b)));
-    let neg = one(
-        "v4_neg",
-        &["a"],
-        quote!(_mm256_xor_pd(#a, _mm256_set1_pd(-0.0))),
-    );
+    let [fma, mul, add, sub, xor, set1] = match scalar {
+        Scalar::F64 => [
+            "_mm256_fmadd_pd",
+            "_mm256_mul_pd",
+            "_mm256_add_pd",
+            "_mm256_sub_pd",
+            "_mm256_xor_pd",
+            "_mm256_set1_pd",
+        ],
+        Scalar::F32 => [
+            "_mm_fmadd_ps",
+            "_mm_mul_ps",
+            "_mm_add_ps",
+            "_mm_sub_ps",
+            "_mm_xor_ps",
+            "_mm_set1_ps",
+        ],
+    }
+    .map(|f| format_ident!("{}", f));
+    let fma = one("v4_fma", &["a", "b", "c"], quote!(#fma(#a, #b, #c)));
+    let mul = one("v4_mul", &["a", "b"], quote!(#mul(#a, #b)));
+    let add = one("v4_add", &["a", "b"], quote!(#add(#a, #b)));
+    let sub = one("v4_sub", &["a", "b"], quote!(#sub(#a, #b)));
+    let neg = one("v4_neg", &["a"], quote!(#xor(#a, #set1(-0.0))));
     let helpers = [fma, mul, add, sub, neg];
     let used = super::function::VECTOR_HELPERS
         .iter()

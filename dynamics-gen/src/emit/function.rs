@@ -111,8 +111,8 @@ pub struct FunctionBody<'a> {
     /// of two products an addition fuses. Empty until [`Self::tokens`] fills it.
     pub ready: &'a [u32],
     /// Which nodes to compute as packs of 4-lane vector operations where they are alike
-    /// ([`super::pack`], [`Packs`]). With `std`, for `f64`, in a single-state body that is
-    /// not split into parts.
+    /// ([`super::pack`], [`Packs`]). With `std` (`f64` or `f32`), in a single-state body
+    /// that is not split into parts.
     pub pack: Packs,
     /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
     /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].
@@ -886,11 +886,7 @@ impl FunctionBody<'_> {
     fn packs(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
         use super::pack::Operand;
         let live_nodes = live.iter().filter(|&&l| l).count();
-        if self.pack == Packs::None
-            || self.no_std
-            || self.scalar != Scalar::F64
-            || live_nodes > MAX_UNSPLIT_LETS
-        {
+        if self.pack == Packs::None || self.no_std || live_nodes > MAX_UNSPLIT_LETS {
             return None;
         }
         let g = self.graph;
@@ -1782,15 +1778,16 @@ pub fn mul_add_helper(scalar: Scalar) -> TokenStream {
 /// `_with::<WIDE>` forms).
 pub const VECTOR_HELPERS: [&str; 5] = ["v4_fma", "v4_mul", "v4_add", "v4_sub", "v4_neg"];
 
-/// The private helpers on `[f64; 4]` that packed bodies call ([`super::pack`]): lane by lane
-/// the scalar operations (`v4_fma` through [`mul_add_helper`]'s `mul_add`), which the
-/// optimiser reduces to the scalar code the lanes stand for; the dispatched copies call
-/// their AVX2 forms instead ([`super::dispatch`]).
-pub fn vector_helpers() -> TokenStream {
+/// The private helpers on `[T; 4]` (`T` the scalar) that packed bodies call
+/// ([`super::pack`]): lane by lane the scalar operations (`v4_fma` through
+/// [`mul_add_helper`]'s `mul_add`), which the optimiser reduces to the scalar code the lanes
+/// stand for; the dispatched copies call their AVX2 forms instead ([`super::dispatch`]).
+pub fn vector_helpers(scalar: Scalar) -> TokenStream {
+    let t = Ident::new(scalar.as_str(), Span::call_site());
     quote! {
         /// `a·b + c` lane by lane, fused as [`Self::mul_add`] is.
         #[inline(always)]
-        fn v4_fma(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> [f64; 4] {
+        fn v4_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
             let ([a0, a1, a2, a3], [b0, b1, b2, b3], [c0, c1, c2, c3]) = (a, b, c);
             [
                 Self::mul_add(a0, b0, c0),
@@ -1801,25 +1798,25 @@ pub fn vector_helpers() -> TokenStream {
         }
         /// `a·b` lane by lane.
         #[inline(always)]
-        fn v4_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+        fn v4_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
             let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
             [a0 * b0, a1 * b1, a2 * b2, a3 * b3]
         }
         /// `a + b` lane by lane.
         #[inline(always)]
-        fn v4_add(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+        fn v4_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
             let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
             [a0 + b0, a1 + b1, a2 + b2, a3 + b3]
         }
         /// `a − b` lane by lane.
         #[inline(always)]
-        fn v4_sub(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+        fn v4_sub(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
             let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
             [a0 - b0, a1 - b1, a2 - b2, a3 - b3]
         }
         /// `−a` lane by lane.
         #[inline(always)]
-        fn v4_neg(a: [f64; 4]) -> [f64; 4] {
+        fn v4_neg(a: [#t; 4]) -> [#t; 4] {
             let [a0, a1, a2, a3] = a;
             [-a0, -a1, -a2, -a3]
         }
@@ -1905,8 +1902,8 @@ mod tests {
         // Packs are for poses: not the Jacobian, not the dynamics.
         assert!(!body_of(&code, "jacobian_space").contains("v4_"));
         assert!(!body_of(&code, "gravity").contains("v4_"));
-        // Without the dispatch the scalar helpers, no intrinsics; no packs in `f32` or
-        // `no_std` code.
+        // Without the dispatch the scalar helpers, no intrinsics; `f32` on `[f32; 4]` packs,
+        // 128-bit registers in the dispatched copies; no packs in `no_std` code.
         let plain = crate::Builder::new("rand7")
             .no_runtime_trait()
             .cpu_dispatch(false)
@@ -1914,17 +1911,22 @@ mod tests {
             .generate()
             .expect("generates");
         assert!(plain.contains("Self::v4_fma(") && !plain.contains("_mm256"));
-        for builder in [
-            crate::Builder::new("rand7").scalar(crate::Scalar::F32),
-            crate::Builder::new("rand7").no_std(true),
-        ] {
-            let code = builder
-                .no_runtime_trait()
-                .functions(["end_effector_pose"])
-                .generate()
-                .expect("generates");
-            assert!(!code.contains("v4_"));
-        }
+        let single = crate::Builder::new("rand7")
+            .scalar(crate::Scalar::F32)
+            .no_runtime_trait()
+            .functions(["end_effector_pose"])
+            .generate()
+            .expect("generates");
+        assert!(body_of(&single, "end_effector_pose").contains("Self::v4_fma_with::<WIDE"));
+        assert!(single.contains("fn v4_fma_with<const WIDE: bool>(a: [f32; 4]"));
+        assert!(single.contains("_mm_fmadd_ps") && !single.contains("_mm256_fmadd_pd"));
+        let code = crate::Builder::new("rand7")
+            .no_std(true)
+            .no_runtime_trait()
+            .functions(["end_effector_pose"])
+            .generate()
+            .expect("generates");
+        assert!(!code.contains("v4_"));
     }
 
     #[test]

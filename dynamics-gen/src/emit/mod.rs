@@ -453,7 +453,7 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             .any(|h| dispatch::contains_ident(f, h))
     });
     let vector_fns = if packed {
-        function::vector_helpers()
+        function::vector_helpers(options.scalar)
     } else {
         quote!()
     };

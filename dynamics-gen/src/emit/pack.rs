@@ -26,9 +26,10 @@
 //! node has in the scalar code, with the same operations: a sign changes no rounding, and a
 //! fused multiply-add `fma(−x, y, c)` is the scalar code's `mul_add(−x, y, c)`.
 //!
-//! The emitter writes a pack as one `[f64; 4]` operation (`Self::v4_fma`, …), which the
-//! dispatched copies compile to one AVX2 instruction and the portable code to the scalar
-//! operations it had (the fourth lane is unused and removed). A seed is kept only where it
+//! The emitter writes a pack as one `[T; 4]` operation (`Self::v4_fma`, …; `T` is `f64` or
+//! `f32`), which the dispatched copies compile to one AVX2 instruction (on a 256-bit
+//! register for `f64`, a 128-bit one for `f32`) and the portable code to the scalar
+//! operations it had (an unused fourth lane is removed). A seed is kept only where it
 //! saves instructions ([`MIN_SAVED`]), and only where the packs can be ordered (no lane reads
 //! another lane's value of the same pack, directly or through other packs): [`find`] checks
 //! that the graph with every pack contracted to one node has no cycle, and drops a seed that
