@@ -432,31 +432,6 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         function::mul_add_helper(options.scalar)
     };
-    // Packed bodies (`pack`: the kinematics' poses, alike outputs): where one calls them.
-    let packed = [
-        &mass_matrix,
-        &coriolis,
-        &gravity,
-        &inverse,
-        &forward,
-        &kinetic,
-        &mass_matrix_dot,
-        &extras,
-        &derivative_fns,
-        &regressor_fns,
-        &kinematics_fns,
-    ]
-    .iter()
-    .any(|f| {
-        function::VECTOR_HELPERS
-            .iter()
-            .any(|h| dispatch::contains_ident(f, h))
-    });
-    let vector_fns = if packed {
-        function::vector_helpers(options.scalar)
-    } else {
-        quote!()
-    };
     // Only revolute joints (mimic ones included) bring sines and cosines.
     let sin_cos_fn = if robot
         .joints
@@ -581,11 +556,19 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
             #kinematics_fns
 
             #mul_add_fn
-            #vector_fns
-
-            #sin_cos_fn
         }
     };
+    // The vector helpers where a body calls them (`pack`: the poses' rows, alike outputs),
+    // found in the functions themselves; then the sine–cosine kernel.
+    let calls_vector = function::VECTOR_HELPERS
+        .iter()
+        .any(|h| dispatch::contains_ident(&impl_block, h));
+    let vector_fns = if calls_vector {
+        function::vector_helpers(options.scalar)
+    } else {
+        quote!()
+    };
+    let impl_block = append_to_impl(impl_block, quote!(#vector_fns #sin_cos_fn));
     let impl_block = select_functions(impl_block, &robot, options)?;
     let impl_block = if options.sin_cos_variants {
         given_sin_cos::apply(impl_block, &q_ty, nq_usize, &nalgebra)
@@ -1159,6 +1142,20 @@ fn dynamics_extras(
             Some(r)
         }
     }
+}
+
+/// `impl_block` (attributes, then `impl X { … }`) with `items` added at the end of its body.
+fn append_to_impl(impl_block: TokenStream, items: TokenStream) -> TokenStream {
+    use proc_macro2::{Delimiter, Group, TokenTree};
+    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
+    if let Some(TokenTree::Group(body)) = tokens.last_mut() {
+        if body.delimiter() == Delimiter::Brace {
+            let mut inner = body.stream();
+            inner.extend(items);
+            *body = Group::new(Delimiter::Brace, inner);
+        }
+    }
+    tokens.into_iter().collect()
 }
 
 /// The impl block with only the functions of `options.functions` (all when `None`), after
