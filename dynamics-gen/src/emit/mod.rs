@@ -442,133 +442,138 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     } else {
         quote!()
     };
-    let impl_block = quote! {
-        #allow
-        #[rustfmt::skip]
-        impl #ident {
-            /// The number of joints n (the floating base not counted; mimic joints, which
-            /// follow another joint, not counted either).
-            pub const DOF: usize = #n;
-            /// The length of the configuration `q`: n, or n + 7 with a floating base.
-            pub const NQ: usize = #nq;
-            /// The length of the velocity `qd`, the acceleration `qdd` and the forces `tau`: n,
-            /// or n + 6 with a floating base.
-            pub const NV: usize = #nv;
-            /// The joint names, in the order of every vector and matrix index.
-            pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
-            #limits
-            #gravity_const
+    let items = quote! {
+        /// The number of joints n (the floating base not counted; mimic joints, which
+        /// follow another joint, not counted either).
+        pub const DOF: usize = #n;
+        /// The length of the configuration `q`: n, or n + 7 with a floating base.
+        pub const NQ: usize = #nq;
+        /// The length of the velocity `qd`, the acceleration `qdd` and the forces `tau`: n,
+        /// or n + 6 with a floating base.
+        pub const NV: usize = #nv;
+        /// The joint names, in the order of every vector and matrix index.
+        pub const JOINT_NAMES: [&'static str; #n] = [#(#names),*];
+        #limits
+        #gravity_const
 
-            /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
-            /// by joint types).
-            #[doc = ""]
-            #[doc = #mass_doc]
-            #[doc = ""]
-            #[doc = #units]
-            #armature_doc
-            #[inline]
-            #[must_use]
-            pub fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
-                #mass_matrix
-            }
-
-            /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`.
-            /// Quadratic in `qd`.
-            #[doc = ""]
-            #[doc = #coriolis_doc]
-            #[doc = ""]
-            #[doc = #units]
-            #[inline]
-            #[must_use]
-            pub fn coriolis(&self, q: &#q_ty, qd: &#vec_ty) -> #vec_ty {
-                #coriolis
-            }
-
-            /// The gravity terms `g(q)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces that
-            /// hold the robot still.
-            #[doc = ""]
-            #[doc = #gravity_doc_method]
-            #[doc = ""]
-            #[doc = #gravity_doc]
-            #[doc = #units]
-            #[inline]
-            #[must_use]
-            pub fn gravity(&self, q: &#q_ty) -> #vec_ty {
-                #gravity
-            }
-
-            /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces (N·m for
-            /// revolute, N for prismatic joints) that produce `qdd`.
-            #[doc = ""]
-            #[doc = #inverse_doc]
-            #[doc = ""]
-            #[doc = #gravity_doc]
-            #[doc = #units]
-            #friction_doc
-            #[inline]
-            #[must_use]
-            pub fn inverse_dynamics(&self, q: &#q_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
-                #inverse
-            }
-
-            /// Forward dynamics `q̈ = M(q)⁻¹ (τ − c(q, q̇) − g(q))`.
-            #[doc = ""]
-            #[doc = #forward_doc]
-            #[doc = ""]
-            #[doc = #gravity_doc]
-            #[doc = #units]
-            #friction_doc
-            #[inline]
-            #[must_use]
-            pub fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
-                #forward
-            }
-
-            /// The kinetic energy `K = ½ q̇ᵀ M(q) q̇` (J); on a floating base `q̇ = ν`, the
-            /// base's own motion included.
-            #[inline]
-            #[must_use]
-            pub fn kinetic_energy(&self, q: &#q_ty, qd: &#vec_ty) -> #scalar {
-                #kinetic
-            }
-
-            /// The time derivative `Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k` of the mass matrix (Modern
-            /// Robotics Exercise 8.7): the exact symbolic derivative of `mass_matrix`, so that
-            /// `Ṁ − 2C` is skew-symmetric for the Christoffel `C`.
-            #[doc = ""]
-            #[doc = #units]
-            #[inline]
-            #[must_use]
-            pub fn mass_matrix_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #mat_ty {
-                #mass_matrix_dot
-            }
-
-            #friction_fn
-
-            #extras
-
-            #derivative_fns
-
-            #batch_fns
-
-            #regressor_fns
-
-            #kinematics_fns
-
-            #mul_add_fn
+        /// The joint-space mass matrix `M(q)` (symmetric positive definite; kg·m², kg·m or kg
+        /// by joint types).
+        #[doc = ""]
+        #[doc = #mass_doc]
+        #[doc = ""]
+        #[doc = #units]
+        #armature_doc
+        #[inline]
+        #[must_use]
+        pub fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
+            #mass_matrix
         }
+
+        /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`.
+        /// Quadratic in `qd`.
+        #[doc = ""]
+        #[doc = #coriolis_doc]
+        #[doc = ""]
+        #[doc = #units]
+        #[inline]
+        #[must_use]
+        pub fn coriolis(&self, q: &#q_ty, qd: &#vec_ty) -> #vec_ty {
+            #coriolis
+        }
+
+        /// The gravity terms `g(q)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces that
+        /// hold the robot still.
+        #[doc = ""]
+        #[doc = #gravity_doc_method]
+        #[doc = ""]
+        #[doc = #gravity_doc]
+        #[doc = #units]
+        #[inline]
+        #[must_use]
+        pub fn gravity(&self, q: &#q_ty) -> #vec_ty {
+            #gravity
+        }
+
+        /// Inverse dynamics `τ = M(q) q̈ + c(q, q̇) + g(q)`: the joint forces (N·m for
+        /// revolute, N for prismatic joints) that produce `qdd`.
+        #[doc = ""]
+        #[doc = #inverse_doc]
+        #[doc = ""]
+        #[doc = #gravity_doc]
+        #[doc = #units]
+        #friction_doc
+        #[inline]
+        #[must_use]
+        pub fn inverse_dynamics(&self, q: &#q_ty, qd: &#vec_ty, qdd: &#vec_ty) -> #vec_ty {
+            #inverse
+        }
+
+        /// Forward dynamics `q̈ = M(q)⁻¹ (τ − c(q, q̇) − g(q))`.
+        #[doc = ""]
+        #[doc = #forward_doc]
+        #[doc = ""]
+        #[doc = #gravity_doc]
+        #[doc = #units]
+        #friction_doc
+        #[inline]
+        #[must_use]
+        pub fn forward_dynamics(&self, q: &#q_ty, qd: &#vec_ty, tau: &#vec_ty) -> #vec_ty {
+            #forward
+        }
+
+        /// The kinetic energy `K = ½ q̇ᵀ M(q) q̇` (J); on a floating base `q̇ = ν`, the
+        /// base's own motion included.
+        #[inline]
+        #[must_use]
+        pub fn kinetic_energy(&self, q: &#q_ty, qd: &#vec_ty) -> #scalar {
+            #kinetic
+        }
+
+        /// The time derivative `Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k` of the mass matrix (Modern
+        /// Robotics Exercise 8.7): the exact symbolic derivative of `mass_matrix`, so that
+        /// `Ṁ − 2C` is skew-symmetric for the Christoffel `C`.
+        #[doc = ""]
+        #[doc = #units]
+        #[inline]
+        #[must_use]
+        pub fn mass_matrix_dot(&self, q: &#q_ty, qd: &#vec_ty) -> #mat_ty {
+            #mass_matrix_dot
+        }
+
+        #friction_fn
+
+        #extras
+
+        #derivative_fns
+
+        #batch_fns
+
+        #regressor_fns
+
+        #kinematics_fns
+
+        #mul_add_fn
     };
-    // The vector helpers where a body calls them (`pack`: the poses' rows, alike outputs),
-    // found in the functions themselves; then the sine–cosine kernel.
-    let calls_vector = function::VECTOR_HELPERS
+    // The vector helpers where a function calls them (`pack`: the poses' rows, alike
+    // outputs), found in the functions themselves.
+    let vector_fns = if function::VECTOR_HELPERS
         .iter()
-        .any(|h| dispatch::contains_ident(&impl_block, h));
-    let vector_fns = if calls_vector {
+        .any(|h| dispatch::contains_ident(&items, h))
+    {
         function::vector_helpers(options.scalar)
     } else {
         quote!()
     };
-    let impl_block = append_to_impl(impl_block, quote!(#vector_fns #sin_cos_fn));
+    let impl_block = quote! {
+        #allow
+        #[rustfmt::skip]
+        impl #ident {
+            #items
+            #vector_fns
+
+            #sin_cos_fn
+        }
+    };
     let impl_block = select_functions(impl_block, &robot, options)?;
     let impl_block = if options.sin_cos_variants {
         given_sin_cos::apply(impl_block, &q_ty, nq_usize, &nalgebra)
@@ -1142,20 +1147,6 @@ fn dynamics_extras(
             Some(r)
         }
     }
-}
-
-/// `impl_block` (attributes, then `impl X { … }`) with `items` added at the end of its body.
-fn append_to_impl(impl_block: TokenStream, items: TokenStream) -> TokenStream {
-    use proc_macro2::{Delimiter, Group, TokenTree};
-    let mut tokens: Vec<TokenTree> = impl_block.into_iter().collect();
-    if let Some(TokenTree::Group(body)) = tokens.last_mut() {
-        if body.delimiter() == Delimiter::Brace {
-            let mut inner = body.stream();
-            inner.extend(items);
-            *body = Group::new(Delimiter::Brace, inner);
-        }
-    }
-    tokens.into_iter().collect()
 }
 
 /// The impl block with only the functions of `options.functions` (all when `None`), after
