@@ -191,7 +191,8 @@ fn generated_frames_reproduce_pinocchio() {
                     let x: Vec<f64> = (0..6 * nv).map(|e| j[(e / nv, e % nv)]).collect();
                     check(slot, key, &x, &theirs);
                 }
-                count += 1;
+                // The f64 trees' frame samples (the f32 copy's are checked, not counted).
+                count += usize::from(case.scalar == "f64");
             }
         }
     }
