@@ -1,0 +1,130 @@
+//! How many floating-point loads, stores and multiply-adds one x86-64 core runs per cycle: blocks
+//! of eight independent instructions in an `asm!` loop, best of 7 runs of 2·10⁷ iterations.
+//! `docs/performance.md` ("One vector store per cycle") has this Zen 3's figures; they say which
+//! port bounds a generated body (count its instructions of each kind with `objdump`).
+//!
+//! ```sh
+//! rustc -O --edition 2021 bench/ports.rs -o /tmp/ports && /tmp/ports
+//! ```
+//!
+//! The first line calibrates: eight multiply-add chains, one step each per iteration, take one
+//! multiply-add latency per iteration (4 cycles on Zen 3), which gives the clock.
+
+#[cfg(target_arch = "x86_64")]
+fn main() {
+    use std::arch::asm;
+    use std::time::Instant;
+    macro_rules! block {
+        ($body:expr) => {{
+            let mut buf = [0.0f64; 128];
+            let p = buf.as_mut_ptr();
+            let iters = 20_000_000u64;
+            let mut best = f64::MAX;
+            for _ in 0..7 {
+                let t = Instant::now();
+                for _ in 0..iters {
+                    // SAFETY: the block reads and writes `buf` (1 KB) through `rdi` and clobbers
+                    // the registers it names.
+                    unsafe {
+                        asm!($body, in("rdi") p, out("rax") _,
+                             out("xmm0") _, out("xmm1") _, out("xmm2") _, out("xmm3") _,
+                             out("xmm4") _, out("xmm5") _, out("xmm6") _, out("xmm7") _,
+                             out("xmm8") _, out("xmm9") _, out("xmm10") _, out("xmm11") _,
+                             options(nostack));
+                    }
+                }
+                best = best.min(t.elapsed().as_nanos() as f64 / iters as f64);
+            }
+            std::hint::black_box(&buf);
+            best
+        }};
+    }
+    let calibration = block!(
+        "vfmadd231sd xmm0, xmm8, xmm9\nvfmadd231sd xmm1, xmm8, xmm9\n\
+         vfmadd231sd xmm2, xmm8, xmm9\nvfmadd231sd xmm3, xmm8, xmm9\n\
+         vfmadd231sd xmm4, xmm8, xmm9\nvfmadd231sd xmm5, xmm8, xmm9\n\
+         vfmadd231sd xmm6, xmm8, xmm9\nvfmadd231sd xmm7, xmm8, xmm9"
+    );
+    let cycle = calibration / 4.0;
+    println!(
+        "clock: {:.2} GHz (8 multiply-add chains: {calibration:.3} ns = 4 cycles)",
+        1.0 / cycle
+    );
+    let report =
+        |name: &str, ns: f64| println!("{name:<44} {ns:6.3} ns  {:5.1} cycles", ns / cycle);
+    report(
+        "8 f64 loads (vmovsd)",
+        block!(
+            "vmovsd xmm0, [rdi]\nvmovsd xmm1, [rdi+8]\n\
+        vmovsd xmm2, [rdi+16]\nvmovsd xmm3, [rdi+24]\nvmovsd xmm4, [rdi+32]\n\
+        vmovsd xmm5, [rdi+40]\nvmovsd xmm6, [rdi+48]\nvmovsd xmm7, [rdi+56]"
+        ),
+    );
+    report(
+        "8 f64 stores (vmovsd), one cache line",
+        block!(
+            "vmovsd [rdi+64], xmm8\n\
+        vmovsd [rdi+72], xmm9\nvmovsd [rdi+80], xmm10\nvmovsd [rdi+88], xmm11\n\
+        vmovsd [rdi+96], xmm8\nvmovsd [rdi+104], xmm9\nvmovsd [rdi+112], xmm10\n\
+        vmovsd [rdi+120], xmm11"
+        ),
+    );
+    report(
+        "8 f64 stores (vmovsd), eight cache lines",
+        block!(
+            "vmovsd [rdi], xmm8\n\
+        vmovsd [rdi+64], xmm9\nvmovsd [rdi+128], xmm10\nvmovsd [rdi+192], xmm11\n\
+        vmovsd [rdi+256], xmm8\nvmovsd [rdi+320], xmm9\nvmovsd [rdi+384], xmm10\n\
+        vmovsd [rdi+448], xmm11"
+        ),
+    );
+    report(
+        "8 16-byte stores (vmovupd xmm)",
+        block!(
+            "vmovupd [rdi], xmm8\n\
+        vmovupd [rdi+16], xmm9\nvmovupd [rdi+32], xmm10\nvmovupd [rdi+48], xmm11\n\
+        vmovupd [rdi+64], xmm8\nvmovupd [rdi+80], xmm9\nvmovupd [rdi+96], xmm10\n\
+        vmovupd [rdi+112], xmm11"
+        ),
+    );
+    report(
+        "8 32-byte stores (vmovupd ymm)",
+        block!(
+            "vmovupd [rdi], ymm8\n\
+        vmovupd [rdi+32], ymm9\nvmovupd [rdi+64], ymm10\nvmovupd [rdi+96], ymm11\n\
+        vmovupd [rdi+128], ymm8\nvmovupd [rdi+160], ymm9\nvmovupd [rdi+192], ymm10\n\
+        vmovupd [rdi+224], ymm11"
+        ),
+    );
+    report(
+        "8 vmovq to a general register",
+        block!(
+            "vmovq rax, xmm8\nvmovq rax, xmm9\n\
+        vmovq rax, xmm10\nvmovq rax, xmm11\nvmovq rax, xmm8\nvmovq rax, xmm9\n\
+        vmovq rax, xmm10\nvmovq rax, xmm11"
+        ),
+    );
+    report(
+        "8 integer stores (mov)",
+        block!(
+            "mov [rdi], rax\nmov [rdi+8], rax\n\
+        mov [rdi+16], rax\nmov [rdi+24], rax\nmov [rdi+32], rax\nmov [rdi+40], rax\n\
+        mov [rdi+48], rax\nmov [rdi+56], rax"
+        ),
+    );
+    report(
+        "8 f64 loads and 4 f64 stores",
+        block!(
+            "vmovsd xmm0, [rdi]\nvmovsd xmm1, [rdi+8]\n\
+        vmovsd xmm2, [rdi+16]\nvmovsd xmm3, [rdi+24]\nvmovsd xmm4, [rdi+32]\n\
+        vmovsd xmm5, [rdi+40]\nvmovsd xmm6, [rdi+48]\nvmovsd xmm7, [rdi+56]\n\
+        vmovsd [rdi+64], xmm8\nvmovsd [rdi+72], xmm9\nvmovsd [rdi+80], xmm10\n\
+        vmovsd [rdi+88], xmm11"
+        ),
+    );
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn main() {
+    eprintln!("bench/ports.rs measures x86-64 ports only");
+}
