@@ -8,7 +8,10 @@
 //! ```
 //!
 //! The first line calibrates: eight multiply-add chains, one step each per iteration, take one
-//! multiply-add latency per iteration (4 cycles on Zen 3), which gives the clock.
+//! multiply-add latency per iteration (4 cycles on Zen 3), which gives the clock. The chains run
+//! through `xmm0`–`xmm7` from one iteration to the next: the loop around the `asm!` does no
+//! floating-point work, so nothing else writes those registers (their values are garbage; only
+//! the dependency counts).
 
 #[cfg(target_arch = "x86_64")]
 fn main() {
