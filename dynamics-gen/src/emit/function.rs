@@ -128,9 +128,21 @@ pub enum Packs {
     /// column's three entries, and the translation (the kinematics; the Jacobians' columns
     /// gained nothing, see `docs/performance.md`).
     Rows,
-    /// Outputs of one shape ([`super::pack::alike_seeds`]): the same joint of a tree's alike
-    /// limbs (the dynamics).
-    Alike,
+    /// Outputs of one shape ([`super::pack::alike_seeds`]), at least this many to a seed: the
+    /// same joint of a tree's alike limbs (the dynamics; see [`alike_packs`]).
+    Alike(usize),
+}
+
+/// The packs of the dynamics function `name` (its single-state body and its batch body's
+/// [`Plan`] alike): outputs of one shape, two lanes or more
+/// ([`super::pack::MIN_ALIKE_LANES`]). The mass matrix, alone or with the bias, keeps three
+/// lanes at least: bound by its stores, it ran 2–9 % slower with G1's legs in two lanes, where
+/// the other functions ran up to 15 % faster (`docs/performance.md`, twenty-eighth session).
+pub(crate) fn alike_packs(name: &str) -> Packs {
+    match name {
+        "mass_matrix" | "mass_matrix_and_bias" => Packs::Alike(3),
+        _ => Packs::Alike(super::pack::MIN_ALIKE_LANES),
+    }
 }
 
 /// What a batch body does as the single-state body's packs do, so that each state's results
@@ -858,7 +870,9 @@ impl FunctionBody<'_> {
     fn pack_seeds(&self, live: &[bool]) -> Vec<[Option<ExprId>; super::pack::LANES]> {
         let items = match (self.pack, self.output) {
             (Packs::None, _) => return Vec::new(),
-            (Packs::Alike, _) => return super::pack::alike_seeds(self.graph, live, self.outputs),
+            (Packs::Alike(min), _) => {
+                return super::pack::alike_seeds(self.graph, live, self.outputs, min)
+            }
             (Packs::Rows, Output::Pose) => 1,
             (Packs::Rows, Output::Poses(count)) => count,
             (Packs::Rows, _) => return Vec::new(),
@@ -885,8 +899,10 @@ impl FunctionBody<'_> {
     /// The packs of this body as a single-state body (a batch body's [`Plan`]).
     fn packs(&self, live: &[bool], uses: &[u32]) -> Option<Packed> {
         use super::pack::Operand;
-        let live_nodes = live.iter().filter(|&&l| l).count();
-        if self.pack == Packs::None || self.no_std || live_nodes > MAX_UNSPLIT_LETS {
+        // About the body's `let` statements (its shared nodes): a body that will be split into
+        // parts ([`chunked`]) is not dispatched, and its portable code is slower with packs.
+        let named = (0..live.len()).filter(|&k| live[k] && uses[k] >= 2).count();
+        if self.pack == Packs::None || self.no_std || named > MAX_UNSPLIT_LETS {
             return None;
         }
         let g = self.graph;

@@ -725,7 +725,7 @@ fn body_tokens(
         output,
         options,
         nalgebra,
-        Packs::Alike,
+        function::alike_packs(name),
     )
 }
 

@@ -104,6 +104,12 @@ pub struct Packing {
 /// the scalar code that reads them (a pose's quaternion), about two instructions more.
 pub const MIN_SAVED: i64 = 6;
 
+/// [`MIN_SAVED`] for a seed of two lanes, whose packs save one instruction each: a limb's
+/// worth. G1's legs save 433 instructions in its inverse dynamics (−13 %), 43 in its gravity
+/// (−6 %); Solo-12's `base_parameters` had two seeds of 11 and 12, and ran 15–26 % slower with
+/// them (`docs/performance.md`, twenty-eighth session).
+pub const MIN_SAVED_TWO_LANES: i64 = 32;
+
 /// The pack of lanes whose operands are being built.
 const BUILDING: usize = usize::MAX;
 
@@ -132,8 +138,13 @@ pub fn find(g: &ExprGraph, live: &[bool], seeds: &[[Option<ExprId>; LANES]]) -> 
             finder.undo(start, aliases);
             continue;
         }
+        let min_saved = if seed.iter().flatten().count() == 2 {
+            MIN_SAVED_TWO_LANES
+        } else {
+            MIN_SAVED
+        };
         let kept =
-            saved(&finder.packing.packs[start..]) >= MIN_SAVED && acyclic(g, live, &finder.packing);
+            saved(&finder.packing.packs[start..]) >= min_saved && acyclic(g, live, &finder.packing);
         if !kept {
             finder.undo(start, aliases);
         }
@@ -141,19 +152,21 @@ pub fn find(g: &ExprGraph, live: &[bool], seeds: &[[Option<ExprId>; LANES]]) -> 
     (!finder.packing.packs.is_empty()).then_some(finder.packing)
 }
 
-/// The fewest alike outputs [`alike_seeds`] packs together. Two (a humanoid's arms) were
-/// measured slower: TALOS' mass matrix with mimic grippers +10 %, its two arms' 64 packs of
-/// two lanes saving less than their gathers and extractions cost.
-pub const MIN_ALIKE_LANES: usize = 3;
+/// The fewest alike outputs [`alike_seeds`] packs together by default: two, a humanoid's
+/// mirrored legs (G1's inverse dynamics 13–14 % faster, coriolis 7–15 %: `docs/performance.md`,
+/// twenty-eighth session). Two lanes pay only with a two-lane gather counted as the one
+/// instruction it is ([`gather_cost`]); counted as two, every seed's packs were undone.
+pub const MIN_ALIKE_LANES: usize = 2;
 
 /// Seeds for a body whose outputs are not a pose's rows: its outputs (sums, differences and
-/// products) of one shape ([`crate::expr::shape`]), [`MIN_ALIKE_LANES`] to [`LANES`] in each
+/// products) of one shape ([`crate::expr::shape`]), `min_lanes` to [`LANES`] in each
 /// seed, in the outputs' order: the torques of a quadruped's four hips, each leg's own chain of the same
 /// operations on its own constants. [`find`] then packs as far as they stay alike.
 pub fn alike_seeds(
     g: &ExprGraph,
     live: &[bool],
     outputs: &[ExprId],
+    min_lanes: usize,
 ) -> Vec<[Option<ExprId>; LANES]> {
     let shape = crate::expr::shape::shapes(g, live);
     let mut index: std::collections::HashMap<u64, usize> = std::collections::HashMap::new();
@@ -176,22 +189,35 @@ pub fn alike_seeds(
     }
     let mut seeds = Vec::new();
     for group in &groups {
-        for chunk in group.chunks(LANES).filter(|c| c.len() >= MIN_ALIKE_LANES) {
+        for chunk in group.chunks(LANES).filter(|c| c.len() >= min_lanes) {
             seeds.push(std::array::from_fn(|k| chunk.get(k).copied()));
         }
     }
     seeds
 }
 
+/// The instructions that gather `n` scalars into the lanes of a pack of `width` lanes: into a
+/// pack of two, one `unpcklpd` of two registers (or a load and a `movhpd`); into a wider one,
+/// one per lane, as the packs of three and four lanes were measured with (counted as one
+/// there, TALOS' three-lane packs of its grippers ran 2–16 % slower).
+fn gather_cost(n: usize, width: usize) -> i64 {
+    if width == 2 {
+        1
+    } else {
+        n as i64
+    }
+}
+
 /// The scalar instructions `packs` save (see [`MIN_SAVED`]).
 fn saved(packs: &[Pack]) -> i64 {
     let mut saved = 0i64;
     for pack in packs {
-        saved += pack.lanes.iter().flatten().count() as i64 - 1;
+        let width = pack.lanes.iter().flatten().count();
+        saved += width as i64 - 1;
         for operand in &pack.operands {
             saved -= match operand {
                 Operand::Splat(_, signs) => 1 + i64::from(signs.iter().any(|&s| s < 0.0)),
-                Operand::Gather(lanes) => lanes.iter().flatten().count() as i64,
+                Operand::Gather(lanes) => gather_cost(lanes.iter().flatten().count(), width),
                 Operand::Permute(_, map, _) => {
                     let moved = map
                         .iter()
@@ -630,7 +656,7 @@ mod tests {
         let other = g.mul(base, base);
         let outputs: Vec<ExprId> = torques.iter().copied().chain([other]).collect();
         let live = g.live(&outputs);
-        let seeds = alike_seeds(&g, &live, &outputs);
+        let seeds = alike_seeds(&g, &live, &outputs, MIN_ALIKE_LANES);
         assert_eq!(seeds, vec![[0, 1, 2, 3].map(|k| Some(torques[k]))]);
         let packing = find(&g, &live, &seeds).expect("packs");
         for t in &torques {
@@ -641,6 +667,54 @@ mod tests {
         }
         // The base's rate is one value in every lane, never packed.
         assert!(packing.of[base.index()].is_none());
+    }
+
+    /// Two mirrored legs on one base: each leg's torque `turns` steps of the same operations
+    /// on the leg's own angle, rate and constants, the second leg's signs flipped.
+    fn two_legs(g: &mut ExprGraph, turns: u16) -> [ExprId; 2] {
+        let base = g.input(Input::new(1, 0));
+        [0u16, 1].map(|leg| {
+            let (q, qd) = (g.input(Input::new(0, leg)), g.input(Input::new(1, 1 + leg)));
+            let (s, c) = (g.sin(q), g.cos(q));
+            let sign = if leg == 0 { 1.0 } else { -1.0 };
+            let mut w = g.add(base, qd);
+            for turn in 0..turns {
+                let k = g.constant(sign * (0.5 + f64::from(turn)));
+                let (a, b) = (g.mul(s, w), g.mul(c, w));
+                let ab = if leg == 0 { g.add(a, b) } else { g.sub(b, a) };
+                let abk = g.mul(k, ab);
+                w = g.add(abk, w);
+            }
+            g.mul(w, qd)
+        })
+    }
+
+    #[test]
+    fn two_alike_legs_are_packed_when_they_save_a_limbs_worth() {
+        // Deep enough, a pair of legs is one seed of two lanes, packed down to the legs' own
+        // inputs (each gathered pair one instruction).
+        let mut g = ExprGraph::new();
+        let legs = two_legs(&mut g, 12);
+        let live = g.live(&legs);
+        let seeds = alike_seeds(&g, &live, &legs, MIN_ALIKE_LANES);
+        assert_eq!(seeds, vec![[Some(legs[0]), Some(legs[1]), None, None]]);
+        let packing = find(&g, &live, &seeds).expect("packs");
+        assert!(saved(&packing.packs) >= MIN_SAVED_TWO_LANES);
+        assert!(legs.iter().all(|l| packing.of[l.index()].is_some()));
+        // Two turns save fewer than `MIN_SAVED_TWO_LANES`: the seed is dropped.
+        let mut g = ExprGraph::new();
+        let legs = two_legs(&mut g, 2);
+        let live = g.live(&legs);
+        let seeds = alike_seeds(&g, &live, &legs, MIN_ALIKE_LANES);
+        assert_eq!(seeds.len(), 1);
+        assert!(find(&g, &live, &seeds).is_none());
+        // The mass matrix asks for three lanes at least: no seed of two.
+        let crate::emit::function::Packs::Alike(min) =
+            crate::emit::function::alike_packs("mass_matrix")
+        else {
+            panic!("the mass matrix packs alike outputs")
+        };
+        assert!(alike_seeds(&g, &live, &legs, min).is_empty());
     }
 
     #[test]
