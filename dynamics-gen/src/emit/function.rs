@@ -137,7 +137,7 @@ pub enum Packs {
 /// [`Plan`] alike): outputs of one shape, two lanes or more
 /// ([`super::pack::MIN_ALIKE_LANES`]). The mass matrix, alone or with the bias, keeps three
 /// lanes at least: bound by its stores, it ran 2–9 % slower with G1's legs in two lanes, where
-/// the other functions ran up to 15 % faster (`docs/performance.md`, twenty-eighth session).
+/// the other functions ran up to 19 % faster (`docs/performance.md`, twenty-eighth session).
 pub(crate) fn alike_packs(name: &str) -> Packs {
     match name {
         "mass_matrix" | "mass_matrix_and_bias" => Packs::Alike(3),

@@ -105,8 +105,8 @@ pub struct Packing {
 pub const MIN_SAVED: i64 = 6;
 
 /// [`MIN_SAVED`] for a seed of two lanes, whose packs save one instruction each: a limb's
-/// worth. G1's legs save 433 instructions in its inverse dynamics (−13 %), 43 in its gravity
-/// (−6 %); Solo-12's `base_parameters` had two seeds of 11 and 12, and ran 15–26 % slower with
+/// worth. G1's legs save 433 instructions in its inverse dynamics (17–19 % faster), 43 in its
+/// gravity; Solo-12's `base_parameters` had two seeds of 11 and 12, and ran 15–26 % slower with
 /// them (`docs/performance.md`, twenty-eighth session).
 pub const MIN_SAVED_TWO_LANES: i64 = 32;
 
@@ -153,7 +153,7 @@ pub fn find(g: &ExprGraph, live: &[bool], seeds: &[[Option<ExprId>; LANES]]) -> 
 }
 
 /// The fewest alike outputs [`alike_seeds`] packs together by default: two, a humanoid's
-/// mirrored legs (G1's inverse dynamics 13–14 % faster, coriolis 7–15 %: `docs/performance.md`,
+/// mirrored legs (G1's inverse dynamics 17–19 % faster, coriolis 9–19 %: `docs/performance.md`,
 /// twenty-eighth session). Two lanes pay only with a two-lane gather counted as the one
 /// instruction it is ([`gather_cost`]); counted as two, every seed's packs were undone.
 pub const MIN_ALIKE_LANES: usize = 2;
