@@ -666,8 +666,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // AVX2 and FMA or AVX-512, other architectures) a single-state body is inlined into the
     // wrapper, as it was before there was a dispatch.
     let portable = format_ident!("{}_portable", name);
-    let portable_body =
-        quote!(self.#body_fn::<false, false #(, #generic_names)*>(#(#arg_names),*));
+    let portable_body = quote!(self.#body_fn::<false, false #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
     let doc = format!(" [`Self::{name}`] where no copy runs: the body compiled for the target.");
     let out_of_line_portable = quote! {
@@ -701,8 +700,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
         let avx512 = isa == Isa::Avx512;
-        let plain =
-            quote!(self.#body_fn::<true, #avx512 #(, #generic_names)*>(#(#arg_names),*));
+        let plain = quote!(self.#body_fn::<true, #avx512 #(, #generic_names)*>(#(#arg_names),*));
         let Some(z_body) = z_body.as_ref().filter(|_| both || isa == Isa::Avx2) else {
             return (plain.clone(), quote!());
         };
@@ -1881,7 +1879,10 @@ mod tests {
             .split_whitespace()
             .collect();
         assert!(out.contains("let[[q0,q1]]=q.data.0;"), "{out}");
-        assert!(out.contains("WIDE,AVX512,_,_>((),move|()|[t0,q1+0.5],)"), "{out}");
+        assert!(
+            out.contains("WIDE,AVX512,_,_>((),move|()|[t0,q1+0.5],)"),
+            "{out}"
+        );
     }
 
     #[test]
@@ -1895,12 +1896,14 @@ mod tests {
         assert!(std.contains("#[target_feature(enable = \"avx2,fma\")]"));
         assert!(std.contains("return unsafe { self.inverse_dynamics_avx2(q, qd, qdd) };"));
         assert_eq!(
-            std.matches("self.inverse_dynamics_body::<true, true>(").count(),
+            std.matches("self.inverse_dynamics_body::<true, true>(")
+                .count(),
             1,
             "the AVX-512 copy"
         );
         assert_eq!(
-            std.matches("self.inverse_dynamics_body::<true, false>(").count(),
+            std.matches("self.inverse_dynamics_body::<true, false>(")
+                .count(),
             1,
             "the AVX2 copy"
         );
