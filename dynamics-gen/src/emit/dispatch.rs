@@ -404,14 +404,13 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
         #[cold]
         #[inline(never)]
         extern "C" fn detect_cpu_level(level: &::core::sync::atomic::AtomicU8) -> u8 {
-            let avx512 = ::std::is_x86_feature_detected!("avx512f")
-                && ::std::is_x86_feature_detected!("avx512vl")
-                && ::std::is_x86_feature_detected!("avx512dq")
-                && ::std::is_x86_feature_detected!("avx512bw")
-                && ::std::is_x86_feature_detected!("avx2")
-                && ::std::is_x86_feature_detected!("fma");
             let avx2 =
                 ::std::is_x86_feature_detected!("avx2") && ::std::is_x86_feature_detected!("fma");
+            let avx512 = avx2
+                && ::std::is_x86_feature_detected!("avx512f")
+                && ::std::is_x86_feature_detected!("avx512vl")
+                && ::std::is_x86_feature_detected!("avx512dq")
+                && ::std::is_x86_feature_detected!("avx512bw");
             let found = if avx512 {
                 2
             } else if avx2 {
@@ -1375,11 +1374,10 @@ fn vector_helpers(
 /// `Self::sin_cos_with::<K, { Self::wide_lanes(K) }, WIDE, AVX512, _, _>(&q.data.0[0], |joints| [angles])`,
 /// the angles' inputs `q7`, … read as `joints[7]`, …: the wide lanes when `WIDE` (the
 /// polynomials fused; through `sin_cos_ymm` when `AVX512`), [`sin_cos_lanes`](super::trig)
-/// otherwise. So the
-/// angles (`q_i + o_i`, a mimic joint's `m q_j + o`) are computed inside `sin_cos_ymm`, on
-/// 256-bit registers, not vectorised on 512-bit ones in the AVX-512 copy (measured on the
-/// Xeon: three such additions and their moves in G1's copies, 24 instructions in TALOS';
-/// gravity 5–14 % faster without them). Angles that read anything else go through a copy,
+/// otherwise. So in the AVX-512 copy the angles (`q_i + o_i`, a mimic joint's `m q_j + o`)
+/// are computed inside `sin_cos_ymm`, on 256-bit registers, not vectorised on 512-bit ones
+/// (measured on the Xeon: three such additions and their moves in G1's copies, 24
+/// instructions in TALOS'; gravity 5–14 % faster without them). Angles that read anything else go through a copy,
 /// `((), move |()| [angles])`.
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let inputs = input_names(&body);
