@@ -24,16 +24,16 @@
 //! }
 //! #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
 //! #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
-//! unsafe extern "C" fn f_avx512(&self, args) -> R { self.f_body::<true, true>(args) }
+//! unsafe extern "C" fn f_avx512(&self, args) -> R { self.f_body::<true>(args) }
 //! #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f"),
 //!           not(all(target_feature = "avx2", target_feature = "fma"))))]
 //! #[target_feature(enable = "avx2,fma")]
-//! unsafe extern "C" fn f_avx2(&self, args) -> R { self.f_body::<true, false>(args) }
+//! unsafe extern "C" fn f_avx2(&self, args) -> R { self.f_body::<true>(args) }
 //! #[cfg(the AVX2 copy's cfg)] #[inline(never)]
-//! extern "C" fn f_portable(&self, args) -> R { self.f_body::<false, false>(args) }
+//! extern "C" fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
 //! #[cfg(not(the AVX2 copy's cfg))] #[inline(always)]
-//! fn f_portable(&self, args) -> R { self.f_body::<false, false>(args) }
-//! #[inline(always)] fn f_body<const WIDE: bool, const AVX512: bool>(&self, args) -> R { the body }
+//! fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
+//! #[inline(always)] fn f_body<const WIDE: bool>(&self, args) -> R { the body }
 //! ```
 //!
 //! `f_portable` is what a CPU without AVX2 runs. Compiled for the default x86-64 target it is
@@ -80,7 +80,7 @@
 //! why was not re-examined.
 //!
 //! A function with `const` generic parameters (the batch functions, `f<const B: usize>`) passes
-//! them on: `f_avx512::<B>` and `f_body::<WIDE, AVX512, B>`; its body's `Lanes` helpers
+//! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
 //! (`mul_add_lanes`, `joint_sin_cos_rows`) are fused as the scalar ones are. A batch function
 //! `X_batch` is dispatched exactly when `X` is, so that a state's result is `X`'s bit for bit
 //! on every CPU. A batch function comes `#[inline(never)]` (it holds the whole `B`-wide body
@@ -312,67 +312,24 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 k.div_ceil(#lanes) * #lanes
             }
 
-            /// The sines and cosines of a dispatched body's angles `angles(q)`: when `WIDE`
-            /// (the AVX-512 and AVX2 copies) on all `P` lanes, fused, through `sin_cos_ymm`
-            /// in the AVX-512 copy (`AVX512`) and inlined in the AVX2 one; otherwise
-            /// [`Self::sin_cos_n`] on [`Self::sin_cos_lanes`].
+            /// The sines and cosines of a dispatched body's angles `angles(q)`, inline: when
+            /// `WIDE` (the AVX-512 and AVX2 copies) on all `P` lanes, fused, otherwise on
+            /// [`Self::sin_cos_lanes`]. In the AVX-512 copies the optimiser vectorises the
+            /// kernel on 512-bit registers, which slow down the code around them on Intel's
+            /// AVX-512 cores; the single-state functions run those copies on AMD's alone (see
+            /// [`Self::cpu_level`]).
             #[inline(always)]
-            #[allow(unsafe_code)]
-            fn sin_cos_with<
-                const K: usize,
-                const P: usize,
-                const WIDE: bool,
-                const AVX512: bool,
-                Q,
-                F,
-            >(
+            fn sin_cos_with<const K: usize, const P: usize, const WIDE: bool, Q, F>(
                 q: Q,
                 angles: F,
             ) -> ([#t; P], [#t; P])
             where
                 F: FnOnce(Q) -> [#t; K],
             {
-                #cfg
-                {
-                    if AVX512 {
-                        // SAFETY: `AVX512` is true only in the `*_avx512` copies, which run
-                        // only where `has_avx512` found AVX2 and FMA (among others).
-                        return unsafe { Self::sin_cos_ymm::<K, P, Q, F>(q, angles) };
-                    }
-                }
                 Self::sin_cos_n::<K, P, WIDE>(
                     angles(q),
                     if WIDE { P } else { Self::sin_cos_lanes(K) },
                 )
-            }
-
-            /// [`Self::sin_cos_n`] of `angles(q)` on all `P` elements, fused, compiled for
-            /// AVX2 and FMA and never inlined: so it runs on 256-bit registers in the AVX-512
-            /// copies too, where the optimiser would otherwise vectorise it on 512-bit ones.
-            /// On Intel's AVX-512 cores those slow down the code around them (measured on a
-            /// Xeon, Emerald Rapids: a 6-joint arm's inverse dynamics took twice as long with
-            /// them). The angles are computed here too, from `q` (the caller's joint
-            /// positions): the joint offsets' additions, vectorised, were the only 512-bit
-            /// instructions left in a floating-base tree's copies. The AVX2 copies have no
-            /// wider registers to avoid and compute the kernel inline, without the call and
-            /// the round trip of its results through memory (measured on Zen 3, old against
-            /// new in one binary: TALOS' inverse dynamics 6–7 % faster, its gravity 27 %).
-            ///
-            /// # Safety
-            ///
-            /// The CPU has AVX2 and FMA.
-            #cfg
-            #[target_feature(enable = "avx2,fma")]
-            #[inline(never)]
-            #[allow(unsafe_code)]
-            unsafe fn sin_cos_ymm<const K: usize, const P: usize, Q, F>(
-                q: Q,
-                angles: F,
-            ) -> ([#t; P], [#t; P])
-            where
-                F: FnOnce(Q) -> [#t; K],
-            {
-                Self::sin_cos_n::<K, P, true>(angles(q), P)
             }
         }
     });
@@ -382,8 +339,9 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
         #sin_cos
         #vector
 
-        /// The copies this CPU can run: 2 where it has the AVX-512 features the `*_avx512`
-        /// copies are compiled for, 1 where it has AVX2 and FMA, 0 otherwise. Detected once,
+        /// The copies this CPU can run: 3 where it has the AVX-512 features the `*_avx512`
+        /// copies are compiled for and is AMD's, 2 where it has them and is not, 1 where it has
+        /// AVX2 and FMA, 0 otherwise. Detected once,
         /// then one relaxed atomic load, inlined into every dispatching wrapper (before, two
         /// calls of the standard library's cached detection per call: the UR5's `J_s` took
         /// 26–27 % longer and its gravity 16–19 %, measured side by side on a Zen 3).
@@ -411,7 +369,15 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 && ::std::is_x86_feature_detected!("avx512vl")
                 && ::std::is_x86_feature_detected!("avx512dq")
                 && ::std::is_x86_feature_detected!("avx512bw");
-            let found = if avx512 {
+            // The vendor "AuthenticAMD" (EBX, EDX, ECX of leaf 0).
+            #[allow(unused_unsafe)]
+            // SAFETY: every x86-64 CPU has CPUID and its leaf 0.
+            let vendor = unsafe { ::core::arch::x86_64::__cpuid(0) };
+            let amd =
+                (vendor.ebx, vendor.edx, vendor.ecx) == (0x6874_7541, 0x6974_6e65, 0x444d_4163);
+            let found = if avx512 && amd {
+                3
+            } else if avx512 {
                 2
             } else if avx2 {
                 1
@@ -427,7 +393,21 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
         #cfg
         #[inline(always)]
         fn has_avx512() -> bool {
-            Self::cpu_level() == 2
+            Self::cpu_level() >= 2
+        }
+
+        /// Whether the single-state functions run their AVX-512 copies here: on AMD's
+        /// AVX-512 cores (Zen 4 and later), which run 512-bit instructions at full speed.
+        /// Their copies' sines and cosines are vectorised on 512-bit registers, and on Intel's
+        /// AVX-512 cores those slow down the code around them: a 6-joint arm's inverse
+        /// dynamics took twice as long, measured on a Xeon (Emerald Rapids), where the AVX2
+        /// copies were within ±5 % of the AVX-512 ones without them. Those cores run the AVX2
+        /// copies (the batch functions, whose lanes fill the 512-bit registers, their AVX-512
+        /// ones).
+        #cfg
+        #[inline(always)]
+        fn has_fast_avx512() -> bool {
+            Self::cpu_level() == 3
         }
 
         /// Whether this CPU has AVX2 and FMA, which the `*_avx2` copies are compiled for.
@@ -674,9 +654,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
          [`Self::has_avx2`] checks."
     );
     let body_doc = format!(
-        " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds and sines and cosines \
-         (the AVX-512 and AVX2 copies); `AVX512`: the AVX-512 copy, whose sines and cosines \
-         go through `sin_cos_ymm` (256-bit registers) when it has more than one angle."
+        " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds, and the sines and cosines \
+         on the whole of the copy's registers (the AVX-512 and AVX2 copies)."
     );
     let (fast_generics, fast_turbofish) = if generic_names.is_empty() {
         (quote!(), quote!())
@@ -700,7 +679,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // AVX2 and FMA or AVX-512, other architectures) a single-state body is inlined into the
     // wrapper, as it was before there was a dispatch.
     let portable = format_ident!("{}_portable", name);
-    let portable_body = quote!(self.#body_fn::<false, false #(, #generic_names)*>(#(#arg_names),*));
+    let portable_body = quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
     let doc = format!(" [`Self::{name}`] where no copy runs: the body compiled for the target.");
     let out_of_line_portable = quote! {
@@ -732,9 +711,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The call of the body in a copy for `isa`, and the item of its body of instructions
     // where it has one. For `B` that do not fill its registers, the vectoriser's body: the
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
+    let plain = quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*));
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
-        let avx512 = isa == Isa::Avx512;
-        let plain = quote!(self.#body_fn::<true, #avx512 #(, #generic_names)*>(#(#arg_names),*));
         let Some(z_body) = z_body.as_ref().filter(|_| both || isa == Isa::Avx2) else {
             return (plain.clone(), quote!());
         };
@@ -784,6 +762,13 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         _ => (cfg, quote!()),
     };
     let (fast_cfg, native_fast) = native(Isa::Avx512, &fast, &fast_body, cfg.clone());
+    // The single-state functions' AVX-512 copies run on AMD's cores alone (see
+    // `has_fast_avx512`); the batch functions' wherever the features are.
+    let has_fast = if generic_names.is_empty() {
+        format_ident!("has_fast_avx512")
+    } else {
+        format_ident!("has_avx512")
+    };
     let (mid_cfg, native_mid) = native(Isa::Avx2, &mid, &mid_body, avx2_cfg);
     quote! {
         #attrs
@@ -791,7 +776,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #vis fn #name #fast_generics (#args) #ret {
             #cfg
             {
-                if Self::has_avx512() {
+                if Self::#has_fast() {
                     return unsafe { self.#fast #fast_turbofish (#(#arg_names),*) };
                 }
                 #[cfg(#avx2)]
@@ -830,7 +815,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 
         #[doc = #body_doc]
         #[inline(always)]
-        fn #body_fn<const WIDE: bool, const AVX512: bool #generics>(#args) #ret {
+        fn #body_fn<const WIDE: bool #generics>(#args) #ret {
             #fused
         }
     }
@@ -1048,13 +1033,6 @@ fn token_body_item(
             const WIDE: bool = true;
         )
     });
-    // (A body of instructions reads `AVX512` only in the sines and cosines of its angles.)
-    let avx512 = isa == Isa::Avx512;
-    let avx512 = contains_ident(z_body, "AVX512").then(|| {
-        quote!(
-            const AVX512: bool = #avx512;
-        )
-    });
     let (args, ret) = (with_literal(args, b, lanes), with_literal(ret, b, lanes));
     let z_body = &if isa == Isa::Avx2 {
         scatter_columns(z_body)
@@ -1073,7 +1051,6 @@ fn token_body_item(
         unsafe fn #name(#args) #ret {
             const #b: usize = #lanes;
             #wide
-            #avx512
             // SAFETY: the function's contract: the copy's features.
             let z = unsafe { Self::#token() };
             #z_body
@@ -1371,13 +1348,12 @@ fn vector_helpers(
 /// `Self::mul_add_lanes(` into `Self::mul_add_lanes_with::<_, WIDE>(`, `Self::joint_sin_cos_rows(`
 /// into `Self::sin_cos_rows_with::<_, _, WIDE>(`), and every
 /// `Self::joint_sin_cos::<K, P>([angles])` into
-/// `Self::sin_cos_with::<K, { Self::wide_lanes(K) }, WIDE, AVX512, _, _>(&q.data.0[0], |joints| [angles])`,
+/// `Self::sin_cos_with::<K, { Self::wide_lanes(K) }, WIDE, _, _>(&q.data.0[0], |joints| [angles])`,
 /// the angles' inputs `q7`, … read as `joints[7]`, …: the wide lanes when `WIDE` (the
-/// polynomials fused; through `sin_cos_ymm` when `AVX512`), [`sin_cos_lanes`](super::trig)
-/// otherwise. So in the AVX-512 copy the angles (`q_i + o_i`, a mimic joint's `m q_j + o`)
-/// are computed inside `sin_cos_ymm`, on 256-bit registers, not vectorised on 512-bit ones
-/// (measured on the Xeon: three such additions and their moves in G1's copies, 24
-/// instructions in TALOS'; gravity 5–14 % faster without them). Angles that read anything else go through a copy,
+/// polynomials fused), [`sin_cos_lanes`](super::trig) otherwise. (The angles were computed
+/// inside an out-of-line kernel compiled for AVX2, so that the AVX-512 copies had no 512-bit
+/// additions, until the single-state functions stopped running those copies on Intel's cores;
+/// see `cpu_level`.) Angles that read anything else go through a copy,
 /// `((), move |()| [angles])`.
 fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
     let inputs = input_names(&body);
@@ -1609,13 +1585,13 @@ fn wide_tokens(
                         let mut arg = None;
                         let call = match angles_of_input(&args, inputs, &mut arg).zip(arg) {
                             Some((angles, arg)) => quote! {
-                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, AVX512, _, _>(
+                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
                                     &#arg.data.0[0],
                                     |joints| #angles,
                                 )
                             },
                             None => quote! {
-                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, AVX512, _, _>(
+                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
                                     (),
                                     move |()| #args,
                                 )
@@ -1829,7 +1805,7 @@ mod tests {
             .find("unsafe extern \"C\" fn inverse_dynamics_batch_avx512<")
             .expect("the AVX-512 copy");
         let copy = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
-        assert!(copy.contains("self.inverse_dynamics_batch_body::<true, true, B>(q, qd, qdd)"));
+        assert!(copy.contains("self.inverse_dynamics_batch_body::<true, B>(q, qd, qdd)"));
         assert!(!copy.contains("B % "));
         // Not for `f32`, whose AVX2 register holds 8 lanes.
         let f32 = crate::Builder::new("ur5")
@@ -1913,10 +1889,7 @@ mod tests {
             .split_whitespace()
             .collect();
         assert!(out.contains("let[[q0,q1]]=q.data.0;"), "{out}");
-        assert!(
-            out.contains("WIDE,AVX512,_,_>((),move|()|[t0,q1+0.5],)"),
-            "{out}"
-        );
+        assert!(out.contains("WIDE,_,_>((),move|()|[t0,q1+0.5],)"), "{out}");
     }
 
     #[test]
@@ -1930,18 +1903,21 @@ mod tests {
         assert!(std.contains("#[target_feature(enable = \"avx2,fma\")]"));
         assert!(std.contains("return unsafe { self.inverse_dynamics_avx2(q, qd, qdd) };"));
         assert_eq!(
-            std.matches("self.inverse_dynamics_body::<true, true>(")
-                .count(),
-            1,
-            "the AVX-512 copy"
-        );
-        assert_eq!(
-            std.matches("self.inverse_dynamics_body::<true, false>(")
-                .count(),
-            1,
-            "the AVX2 copy"
+            std.matches("self.inverse_dynamics_body::<true>(").count(),
+            2,
+            "the AVX-512 and the AVX2 copy"
         );
         assert!(std.contains("Self::mul_add_with::<WIDE>"));
+        // A single-state function runs its AVX-512 copy on AMD's AVX-512 cores alone, a
+        // batch function on any AVX-512 core; AMD's found by the vendor of CPUID leaf 0.
+        let wrapper = |name: &str| {
+            let w = &std[std.find(&format!("pub fn {name}")).expect("a wrapper")..];
+            w[..w.find("\n    }\n").expect("its end")].to_string()
+        };
+        assert!(wrapper("inverse_dynamics(").contains("if Self::has_fast_avx512() {"));
+        assert!(wrapper("inverse_dynamics_batch<").contains("if Self::has_avx512() {"));
+        assert!(std.contains("Self::cpu_level() == 3"));
+        assert!(std.contains("(0x6874_7541, 0x6974_6e65, 0x444d_4163)"));
         // Every `mul_add` of a dispatched body goes through `mul_add_with`.
         let body = &std[std.find("fn inverse_dynamics_body").expect("a body")..];
         let body = &body[..body.find("\n    }\n").expect("its end")];
@@ -1950,13 +1926,11 @@ mod tests {
         // The batch functions pass their `B` on, and their `Lanes` helpers get `WIDE`.
         assert!(std.contains("pub fn inverse_dynamics_batch<const B: usize>("));
         assert!(std.contains("fn inverse_dynamics_batch_avx512<const B: usize>("));
-        assert!(std.contains(
-            "fn inverse_dynamics_batch_body<const WIDE: bool, const AVX512: bool, const B: usize>("
-        ));
+        assert!(std.contains("fn inverse_dynamics_batch_body<const WIDE: bool, const B: usize>("));
         assert!(std.contains("self.inverse_dynamics_batch_avx512::<B>("));
         assert!(std.contains("fn inverse_dynamics_batch_avx2<const B: usize>("));
         assert!(std.contains("self.inverse_dynamics_batch_avx2::<B>("));
-        assert!(std.contains("self.inverse_dynamics_batch_body::<false, false, B>("));
+        assert!(std.contains("self.inverse_dynamics_batch_body::<false, B>("));
         let batch = &std[std
             .find("fn inverse_dynamics_batch_body<")
             .expect("a batch body")..];
