@@ -16,7 +16,7 @@
 //! #[inline] pub fn f(&self, args) -> R {             // the public API, unchanged
 //!     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx512f")))]
 //!     {
-//!         if Self::has_avx512() { return unsafe { self.f_avx512(args) }; }
+//!         if Self::has_fast_avx512() { return unsafe { self.f_avx512(args) }; }
 //!         #[cfg(not(all(target_feature = "avx2", target_feature = "fma")))]
 //!         { if Self::has_avx2() { return unsafe { self.f_avx2(args) }; } }
 //!     }
@@ -48,9 +48,14 @@
 //! one `vfmadd` instruction, and the sines and cosines take 8 `f64` lanes (16 `f32`) at a time
 //! (one AVX-512 register, two AVX2 ones); AVX-512's 32 registers also hold what SSE2 spills.
 //! The two copies run the same operations on the same values, so they give the same bits.
-//! `has_avx512` and `has_avx2` read one cached level (`cpu_level`, a relaxed atomic load,
-//! inlined), which the standard library's `is_x86_feature_detected!` gives on the first call,
-//! in a cold `extern "C"` function, so that callers know it cannot unwind. The copies are
+//! `has_fast_avx512`, `has_avx512` and `has_avx2` read one cached level (`cpu_level`, a
+//! relaxed atomic load, inlined), which the standard library's `is_x86_feature_detected!` and
+//! the vendor of CPUID leaf 0 give on the first call, in a cold `extern "C"` function, so that
+//! callers know it cannot unwind. A single-state function runs its AVX-512 copy on AMD's
+//! AVX-512 cores alone (`has_fast_avx512`) and its AVX2 copy on Intel's: the optimiser
+//! vectorises the copies' sines and cosines on 512-bit registers, which on Intel's cores slow
+//! down the code around them (twice as long, measured on a Xeon). A batch function, whose
+//! lanes fill those registers, runs its AVX-512 copy on any AVX-512 core (`has_avx512`). The copies are
 //! `extern "C"` for the same reason: they are
 //! compiled where the generated file is (often another crate than the caller's), and a call to
 //! a Rust function there counts as one that may unwind to `no_panic` and to the optimiser; an
@@ -370,7 +375,8 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                 && ::std::is_x86_feature_detected!("avx512dq")
                 && ::std::is_x86_feature_detected!("avx512bw");
             // The vendor "AuthenticAMD" (EBX, EDX, ECX of leaf 0).
-            #[allow(unused_unsafe)]
+            // (`__cpuid` is safe in recent Rust, `unsafe` in older releases.)
+            #[allow(unsafe_code, unused_unsafe)]
             // SAFETY: every x86-64 CPU has CPUID and its leaf 0.
             let vendor = unsafe { ::core::arch::x86_64::__cpuid(0) };
             let amd =
