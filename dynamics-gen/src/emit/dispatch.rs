@@ -346,10 +346,10 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
 
         /// The copies this CPU can run: 3 where it has the AVX-512 features the `*_avx512`
         /// copies are compiled for and is AMD's, 2 where it has them and is not, 1 where it has
-        /// AVX2 and FMA, 0 otherwise. Detected once,
-        /// then one relaxed atomic load, inlined into every dispatching wrapper (before, two
-        /// calls of the standard library's cached detection per call: the UR5's `J_s` took
-        /// 26–27 % longer and its gravity 16–19 %, measured side by side on a Zen 3).
+        /// AVX2 and FMA, 0 otherwise. Detected once, then one relaxed atomic load, inlined into
+        /// every dispatching wrapper (before, two calls of the standard library's cached
+        /// detection per call: the UR5's `J_s` took 26–27 % longer and its gravity 16–19 %,
+        /// measured side by side on a Zen 3).
         #cfg
         #[inline(always)]
         fn cpu_level() -> u8 {
@@ -769,8 +769,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     };
     let (fast_cfg, native_fast) = native(Isa::Avx512, &fast, &fast_body, cfg.clone());
     // The single-state functions' AVX-512 copies run on AMD's cores alone (see
-    // `has_fast_avx512`); the batch functions' wherever the features are.
-    let has_fast = if generic_names.is_empty() {
+    // `has_fast_avx512`); the batch functions' (`X_batch`) wherever the features are.
+    let has_fast = if !name.to_string().ends_with("_batch") {
         format_ident!("has_fast_avx512")
     } else {
         format_ident!("has_avx512")
