@@ -240,6 +240,8 @@ struct Used {
     any: bool,
     mul_add: bool,
     sin_cos: bool,
+    /// Kernels whose far angles return the `*_far` function's result ([`wide_tokens`]).
+    far: usize,
     /// The vector helpers of packed bodies that the bodies call ([`super::pack`]).
     vector: std::collections::BTreeSet<String>,
 }
@@ -335,6 +337,39 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
                     angles(q),
                     if WIDE { P } else { Self::sin_cos_lanes(K) },
                 )
+            }
+
+            /// [`Self::sin_cos_with`] in a single-state body, where the angles beyond the
+            /// kernel's bound are the caller's: when `WIDE`, `None` if any is (the body then
+            /// returns what its `*_far` function computes), the same sines and cosines
+            /// otherwise; when not `WIDE`, [`Self::sin_cos_with`]'s, its fallback included.
+            /// That fallback calls the platform's `sin_cos` lane by lane: in line in a copy, the
+            /// call clobbers every vector register, so that every value live across the kernel
+            /// was spilled before it (G1's inverse dynamics copied its 70 velocities and
+            /// accelerations to the stack) and the sines and cosines went through memory.
+            #[inline(always)]
+            fn sin_cos_near<const K: usize, const P: usize, const WIDE: bool, Q, F>(
+                q: Q,
+                angles: F,
+            ) -> ::core::option::Option<([#t; P], [#t; P])>
+            where
+                F: FnOnce(Q) -> [#t; K],
+            {
+                if !WIDE {
+                    return ::core::option::Option::Some(Self::sin_cos_with::<K, P, WIDE, Q, F>(
+                        q, angles,
+                    ));
+                }
+                let mut x = [0.0; P];
+                for (p, a) in x.iter_mut().zip(angles(q)) {
+                    *p = a;
+                }
+                let (mut sin, mut cos) = ([0.0; P], [0.0; P]);
+                if Self::sin_cos_poly::<WIDE>(&x, &mut sin, &mut cos, P) {
+                    ::core::option::Option::None
+                } else {
+                    ::core::option::Option::Some((sin, cos))
+                }
             }
         }
     });
@@ -621,7 +656,7 @@ fn has_mark(item: &[TokenTree], mark: &str) -> bool {
 /// The three functions for the eligible `item`.
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
-        let fused = wide_body(sig.body.clone(), used);
+        let fused = wide_body(sig.body.clone(), used, None);
         let z_body = super::zmm::token_body(&fused);
         return zmm_only(item, sig, z_body, scalar);
     }
@@ -640,7 +675,13 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let fast = format_ident!("{}_avx512", name);
     let mid = format_ident!("{}_avx2", name);
     let body_fn = format_ident!("{}_body", name);
-    let fused = wide_body(body, used);
+    // An angle beyond the kernel's bound: the copy returns `X_far`'s result ([`wide_tokens`]).
+    let far = format_ident!("{}_far", name);
+    let turbofish = (!generic_names.is_empty()).then(|| quote!(::<#(#generic_names),*>));
+    let far_call = quote!(self.#far #turbofish (#(#arg_names),*));
+    let far_before = used.far;
+    let fused = wide_body(body, used, Some(&far_call));
+    let has_far = used.far > far_before;
     // A large batch body's AVX-512 and AVX2 copies: their lane arithmetic as instructions;
     // a mid-sized one's AVX2 copy alone (`zmm::AVX2_MARK`).
     let both = has_mark(item, super::zmm::DOC_MARK);
@@ -687,6 +728,22 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let portable = format_ident!("{}_portable", name);
     let portable_body = quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
+    let far_item = has_far.then(|| {
+        let doc = format!(
+            " [`Self::{name}`] where an angle lies beyond the sines' bound (10⁶ rad for `f64`, \
+             10⁴ for `f32`), which the AVX-512 and AVX2 copies leave to it: the portable copy \
+             (its kernel takes those angles' sines and cosines from the platform). Cold and out \
+             of line, so that the copies make no call of their own."
+        );
+        quote! {
+            #[doc = #doc]
+            #[cold]
+            #[inline(never)]
+            fn #far #fast_generics (#args) #ret {
+                #fallback
+            }
+        }
+    });
     let doc = format!(" [`Self::{name}`] where no copy runs: the body compiled for the target.");
     let out_of_line_portable = quote! {
         #[inline(never)]
@@ -798,6 +855,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         }
 
         #portable
+
+        #far_item
 
         #[doc = #fast_doc]
         #fast_cfg
@@ -1361,9 +1420,9 @@ fn vector_helpers(
 /// additions, until the single-state functions stopped running those copies on Intel's cores;
 /// see `cpu_level`.) Angles that read anything else go through a copy,
 /// `((), move |()| [angles])`.
-fn wide_body(body: TokenStream, used: &mut Used) -> TokenStream {
+fn wide_body(body: TokenStream, used: &mut Used, far: Option<&TokenStream>) -> TokenStream {
     let inputs = input_names(&body);
-    let out = wide_tokens(body, used, &inputs);
+    let out = wide_tokens(body, used, &inputs, far);
     // Inputs now read by a kernel's `joints[i]` alone: `_` in the pattern (the only
     // place left that names them), or the compiler warns of an unused variable.
     let mut uses: BTreeMap<String, usize> = inputs.keys().map(|n| (n.clone(), 0)).collect();
@@ -1522,6 +1581,7 @@ fn wide_tokens(
     body: TokenStream,
     used: &mut Used,
     inputs: &BTreeMap<String, (Ident, usize)>,
+    far: Option<&TokenStream>,
 ) -> TokenStream {
     let mut out: Vec<TokenTree> = Vec::new();
     let mut tokens = body.into_iter().peekable();
@@ -1570,7 +1630,7 @@ fn wide_tokens(
                     (true, Some(TokenTree::Group(g)))
                         if g.delimiter() == Delimiter::Parenthesis =>
                     {
-                        Some(wide_tokens(g.stream(), used, inputs))
+                        Some(wide_tokens(g.stream(), used, inputs, far))
                     }
                     _ => None,
                 };
@@ -1589,21 +1649,40 @@ fn wide_tokens(
                         tokens.next();
                         used.sin_cos = true;
                         let mut arg = None;
+                        let kernel = if far.is_some() {
+                            quote!(sin_cos_near)
+                        } else {
+                            quote!(sin_cos_with)
+                        };
                         let call = match angles_of_input(&args, inputs, &mut arg).zip(arg) {
                             Some((angles, arg)) => quote! {
-                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
                                     &#arg.data.0[0],
                                     |joints| #angles,
                                 )
                             },
                             None => quote! {
-                                sin_cos_with::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
                                     (),
                                     move |()| #args,
                                 )
                             },
                         };
-                        out.extend(call);
+                        match far {
+                            // `match Self::sin_cos_near::<…>(…) { Some(v) => v, None => return
+                            // self.f_far(args) }`: the `Self ::` already written goes inside.
+                            Some(far) => {
+                                used.far += 1;
+                                out.truncate(out.len() - 3);
+                                out.extend(quote! {
+                                    match Self::#call {
+                                        ::core::option::Option::Some(v) => v,
+                                        ::core::option::Option::None => return #far,
+                                    }
+                                });
+                            }
+                            None => out.extend(call),
+                        }
                     }
                     _ => {
                         out.push(TokenTree::Ident(i));
@@ -1612,7 +1691,7 @@ fn wide_tokens(
                 }
             }
             TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), wide_tokens(g.stream(), used, inputs));
+                let mut new = Group::new(g.delimiter(), wide_tokens(g.stream(), used, inputs, far));
                 new.set_span(g.span());
                 out.push(TokenTree::Group(new));
             }
@@ -1849,8 +1928,19 @@ mod tests {
         let flat: String = talos.split_whitespace().collect();
         let body = &flat[flat.find("fninverse_dynamics_body<").expect("a body")..];
         let body = &body[..body.find("fnforward_dynamics").unwrap_or(body.len())];
-        let call = &body[body.find("Self::sin_cos_with::<").expect("the kernel")..];
+        let call = &body[body.find("Self::sin_cos_near::<").expect("the kernel")..];
         let call = &call[..call.find(';').expect("the statement's end")];
+        // An angle beyond the kernel's bound: the portable copy's result, out of line.
+        assert!(
+            call.contains(
+                "::core::option::Option::None=>{returnself.inverse_dynamics_far(q,qd,qdd)"
+            ),
+            "{call}"
+        );
+        assert!(flat.contains(
+            "#[cold]#[inline(never)]fninverse_dynamics_far(&self,q:&::nalgebra::SVector<f64,20>,"
+        ));
+        let call = &call[..call.find("{::core::option").expect("the match")];
         assert!(
             call.contains(">(&q.data.0[0],|joints|[joints[1],"),
             "{call}"
@@ -1890,7 +1980,7 @@ mod tests {
             let ([s0, s1, ..], [c0, c1, ..]) =
                 Self::joint_sin_cos::<2, { Self::sin_cos_lanes(2) }>([t0, q1 + 0.5]);
         };
-        let out: String = super::wide_body(body, &mut super::Used::default())
+        let out: String = super::wide_body(body, &mut super::Used::default(), None)
             .to_string()
             .split_whitespace()
             .collect();
@@ -1928,7 +2018,8 @@ mod tests {
         let body = &std[std.find("fn inverse_dynamics_body").expect("a body")..];
         let body = &body[..body.find("\n    }\n").expect("its end")];
         assert!(!body.contains("Self::mul_add("));
-        assert!(body.contains("Self::sin_cos_with::<"));
+        assert!(body.contains("Self::sin_cos_near::<"));
+        assert!(std.contains("self.inverse_dynamics_portable(q, qd, qdd)"));
         // The batch functions pass their `B` on, and their `Lanes` helpers get `WIDE`.
         assert!(std.contains("pub fn inverse_dynamics_batch<const B: usize>("));
         assert!(std.contains("fn inverse_dynamics_batch_avx512<const B: usize>("));

@@ -1228,8 +1228,8 @@ fn retain_selected(
     Ok(())
 }
 
-/// Removes `mul_add`, `joint_sin_cos` (with `sin_cos_n` and `sin_cos_into`) and `sin_cos_lanes`
-/// where no function calls them.
+/// Removes `mul_add`, `joint_sin_cos` (with `sin_cos_n`, `sin_cos_into` and `sin_cos_poly`) and
+/// `sin_cos_lanes` where no function calls them.
 fn finish_helpers(item: &mut syn::ItemImpl) {
     // `mul_add` and `joint_sin_cos` stay while a function calls them.
     let bodies: Vec<(String, String)> = item
@@ -1253,6 +1253,7 @@ fn finish_helpers(item: &mut syn::ItemImpl) {
         ("joint_sin_cos", called("joint_sin_cos")),
         ("sin_cos_n", called("joint_sin_cos")),
         ("sin_cos_into", called("joint_sin_cos")),
+        ("sin_cos_poly", called("joint_sin_cos")),
         ("sin_cos_lanes", called("sin_cos_lanes")),
     ];
     keep.extend(function::VECTOR_HELPERS.iter().map(|&h| (h, called(h))));

@@ -305,6 +305,20 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         /// trip count).
         #[inline(always)]
         fn sin_cos_into<const F: bool>(x: &[#t], sin: &mut [#t], cos: &mut [#t], n: usize) {
+            if Self::sin_cos_poly::<F>(x, sin, cos, n) {
+                for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
+                    if x > #limit || x < -#limit {
+                        (*sin, *cos) = #fallback;
+                    }
+                }
+            }
+        }
+
+        /// The first loop of [`Self::sin_cos_into`], the reduction and the polynomials, and
+        /// whether any element lies beyond the bound (whose results are then not its sine and
+        /// cosine: [`Self::sin_cos_into`] replaces them).
+        #[inline(always)]
+        fn sin_cos_poly<const F: bool>(x: &[#t], sin: &mut [#t], cos: &mut [#t], n: usize) -> bool {
             #fma
             // Whether any element is beyond the bound: an or of comparisons, which vectorises
             // with the loop (a loop of compares and branches over the elements, which the
@@ -329,13 +343,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 *sin = #t::from_bits(s.to_bits() ^ ((n & 2) << #sign_shift));
                 *cos = #t::from_bits(c.to_bits() ^ ((n.wrapping_add(1) & 2) << #sign_shift));
             }
-            if far {
-                for ((sin, cos), &x) in sin.iter_mut().zip(cos.iter_mut()).zip(x.iter()).take(n) {
-                    if x > #limit || x < -#limit {
-                        (*sin, *cos) = #fallback;
-                    }
-                }
-            }
+            far
         }
 
         #[doc = #lanes_doc]
