@@ -348,14 +348,14 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             /// was spilled before it (G1's inverse dynamics copied its 70 velocities and
             /// accelerations to the stack) and the sines and cosines went through memory.
             #[inline(always)]
-            fn sin_cos_near<const K: usize, const P: usize, const WIDE: bool, Q, F>(
+            fn sin_cos_near<const K: usize, const P: usize, const WIDE: bool, const FAR: bool, Q, F>(
                 q: Q,
                 angles: F,
             ) -> ::core::option::Option<([#t; P], [#t; P])>
             where
                 F: FnOnce(Q) -> [#t; K],
             {
-                if !WIDE {
+                if !WIDE || FAR {
                     return ::core::option::Option::Some(Self::sin_cos_with::<K, P, WIDE, Q, F>(
                         q, angles,
                     ));
@@ -678,7 +678,9 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // An angle beyond the kernel's bound: the copy returns `X_far`'s result ([`wide_tokens`]).
     let far = format_ident!("{}_far", name);
     let turbofish = (!generic_names.is_empty()).then(|| quote!(::<#(#generic_names),*>));
-    let far_call = quote!(self.#far #turbofish (#(#arg_names),*));
+    // SAFETY (in the generated code): reached only from the AVX-512 and AVX2 copies, which run
+    // only on CPUs with AVX2 and FMA, the features `X_far` is compiled for.
+    let far_call = quote!(unsafe { self.#far #turbofish (#(#arg_names),*) });
     let far_before = used.far;
     let fused = wide_body(body, used, Some(&far_call));
     let has_far = used.far > far_before;
@@ -726,20 +728,37 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // AVX2 and FMA or AVX-512, other architectures) a single-state body is inlined into the
     // wrapper, as it was before there was a dispatch.
     let portable = format_ident!("{}_portable", name);
-    let portable_body = quote!(self.#body_fn::<false #(, #generic_names)*>(#(#arg_names),*));
+    // A body whose kernel leaves the far angles to `X_far` has a second `const`, `FAR`: true in
+    // `X_far` alone, whose kernel keeps the fallback in line.
+    let far_generic = has_far.then(|| quote!(, const FAR: bool));
+    let not_far = has_far.then(|| quote!(, false));
+    let portable_body =
+        quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
             " [`Self::{name}`] where an angle lies beyond the sines' bound (10⁶ rad for `f64`, \
-             10⁴ for `f32`), which the AVX-512 and AVX2 copies leave to it: the portable copy \
-             (its kernel takes those angles' sines and cosines from the platform). Cold and out \
-             of line, so that the copies make no call of their own."
+             10⁴ for `f32`), which the AVX-512 and AVX2 copies leave to it: the same fused body \
+             with the kernel's fallback (the platform's sines and cosines for those angles) in \
+             line, compiled for AVX2 and FMA, so the same bits as the copies. Cold and out of \
+             line, so that the copies make no call of their own."
         );
+        let other = " Where no copy runs: never called (the portable body keeps its fallback).";
         quote! {
             #[doc = #doc]
+            #cfg
+            #[target_feature(enable = "avx2,fma")]
+            #[cold]
+            #[allow(unsafe_code, improper_ctypes_definitions)]
+            unsafe extern "C" fn #far #fast_generics (#args) #ret {
+                self.#body_fn::<true, true #(, #generic_names)*>(#(#arg_names),*)
+            }
+            #[doc = #other]
+            #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx512f"))))]
             #[cold]
             #[inline(never)]
-            fn #far #fast_generics (#args) #ret {
+            #[allow(unsafe_code, improper_ctypes_definitions)]
+            unsafe extern "C" fn #far #fast_generics (#args) #ret {
                 #fallback
             }
         }
@@ -774,7 +793,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The call of the body in a copy for `isa`, and the item of its body of instructions
     // where it has one. For `B` that do not fill its registers, the vectoriser's body: the
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
-    let plain = quote!(self.#body_fn::<true #(, #generic_names)*>(#(#arg_names),*));
+    let plain = quote!(self.#body_fn::<true #not_far #(, #generic_names)*>(#(#arg_names),*));
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
         let Some(z_body) = z_body.as_ref().filter(|_| both || isa == Isa::Avx2) else {
             return (plain.clone(), quote!());
@@ -880,7 +899,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 
         #[doc = #body_doc]
         #[inline(always)]
-        fn #body_fn<const WIDE: bool #generics>(#args) #ret {
+        #[allow(unsafe_code)]
+        fn #body_fn<const WIDE: bool #far_generic #generics>(#args) #ret {
             #fused
         }
     }
@@ -1649,20 +1669,20 @@ fn wide_tokens(
                         tokens.next();
                         used.sin_cos = true;
                         let mut arg = None;
-                        let kernel = if far.is_some() {
-                            quote!(sin_cos_near)
+                        let (kernel, far_flag) = if far.is_some() {
+                            (quote!(sin_cos_near), quote!(FAR,))
                         } else {
-                            quote!(sin_cos_with)
+                            (quote!(sin_cos_with), quote!())
                         };
                         let call = match angles_of_input(&args, inputs, &mut arg).zip(arg) {
                             Some((angles, arg)) => quote! {
-                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, #far_flag _, _>(
                                     &#arg.data.0[0],
                                     |joints| #angles,
                                 )
                             },
                             None => quote! {
-                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, _, _>(
+                                #kernel::<#k, { Self::wide_lanes(#k) }, WIDE, #far_flag _, _>(
                                     (),
                                     move |()| #args,
                                 )
@@ -1930,16 +1950,19 @@ mod tests {
         let body = &body[..body.find("fnforward_dynamics").unwrap_or(body.len())];
         let call = &body[body.find("Self::sin_cos_near::<").expect("the kernel")..];
         let call = &call[..call.find(';').expect("the statement's end")];
-        // An angle beyond the kernel's bound: the portable copy's result, out of line.
+        // An angle beyond the kernel's bound: the same fused body with its fallback, out of
+        // line (`FAR`), compiled for AVX2 and FMA.
         assert!(
             call.contains(
-                "::core::option::Option::None=>{returnself.inverse_dynamics_far(q,qd,qdd)"
+                "::core::option::Option::None=>{returnunsafe{self.inverse_dynamics_far(q,qd,qdd)}"
             ),
             "{call}"
         );
+        assert!(call.contains(",WIDE,FAR,_,_,>"), "{call}");
         assert!(flat.contains(
-            "#[cold]#[inline(never)]fninverse_dynamics_far(&self,q:&::nalgebra::SVector<f64,20>,"
+            "#[target_feature(enable=\"avx2,fma\")]#[cold]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_far("
         ));
+        assert!(flat.contains("self.inverse_dynamics_body::<true,true>(q,qd,qdd)"));
         let call = &call[..call.find("{::core::option").expect("the match")];
         assert!(
             call.contains(">(&q.data.0[0],|joints|[joints[1],"),
@@ -1999,9 +2022,16 @@ mod tests {
         assert!(std.contains("#[target_feature(enable = \"avx2,fma\")]"));
         assert!(std.contains("return unsafe { self.inverse_dynamics_avx2(q, qd, qdd) };"));
         assert_eq!(
-            std.matches("self.inverse_dynamics_body::<true>(").count(),
+            std.matches("self.inverse_dynamics_body::<true, false>(")
+                .count(),
             2,
             "the AVX-512 and the AVX2 copy"
+        );
+        assert_eq!(
+            std.matches("self.inverse_dynamics_body::<true, true>(")
+                .count(),
+            1,
+            "the far angles' copy"
         );
         assert!(std.contains("Self::mul_add_with::<WIDE>"));
         // A single-state function runs its AVX-512 copy on AMD's AVX-512 cores alone, a
@@ -2019,7 +2049,6 @@ mod tests {
         let body = &body[..body.find("\n    }\n").expect("its end")];
         assert!(!body.contains("Self::mul_add("));
         assert!(body.contains("Self::sin_cos_near::<"));
-        assert!(std.contains("self.inverse_dynamics_portable(q, qd, qdd)"));
         // The batch functions pass their `B` on, and their `Lanes` helpers get `WIDE`.
         assert!(std.contains("pub fn inverse_dynamics_batch<const B: usize>("));
         assert!(std.contains("fn inverse_dynamics_batch_avx512<const B: usize>("));
@@ -2073,7 +2102,6 @@ mod tests {
             attrs.contains("#[inline]\n") && !attrs.contains("never"),
             "{attrs}"
         );
-        assert!(std.contains("self.inverse_dynamics_portable(q, qd, qdd)"));
         assert_eq!(std.matches("fn inverse_dynamics_portable(").count(), 2);
         let avx2_copy = r#"all(target_arch="x86_64",not(target_feature="avx512f"),not(all(target_feature="avx2",target_feature="fma")))"#;
         let k = std
