@@ -680,10 +680,21 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let turbofish = (!generic_names.is_empty()).then(|| quote!(::<#(#generic_names),*>));
     // SAFETY (in the generated code): reached only from the AVX-512 and AVX2 copies, which run
     // only on CPUs with AVX2 and FMA, the features `X_far` is compiled for.
-    let far_call = quote!(unsafe { self.#far #turbofish (#(#arg_names),*) });
+    // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
+    // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
+    // `X_far` must get the originals.
+    let far_call = quote!({
+        let (#(#arg_names,)*) = far_args;
+        unsafe { self.#far #turbofish (#(#arg_names),*) }
+    });
     let far_before = used.far;
     let fused = wide_body(body, used, Some(&far_call));
     let has_far = used.far > far_before;
+    let fused = if has_far {
+        quote!(let far_args = (#(#arg_names,)*); #fused)
+    } else {
+        fused
+    };
     // A large batch body's AVX-512 and AVX2 copies: their lane arithmetic as instructions;
     // a mid-sized one's AVX2 copy alone (`zmm::AVX2_MARK`).
     let both = has_mark(item, super::zmm::DOC_MARK);
@@ -1953,11 +1964,12 @@ mod tests {
         // An angle beyond the kernel's bound: the same fused body with its fallback, out of
         // line (`FAR`), compiled for AVX2 and FMA.
         assert!(
-            call.contains(
-                "::core::option::Option::None=>{returnunsafe{self.inverse_dynamics_far(q,qd,qdd)}"
-            ),
+            call.contains("::core::option::Option::None=>{return{let(q,qd,qdd)=far_args"),
             "{call}"
         );
+        // The arguments as passed (the body may shadow them), kept aside at its top.
+        assert!(body.contains("{letfar_args=(q,qd,qdd);"), "{body}");
+        assert!(body.contains("unsafe{self.inverse_dynamics_far(q,qd,qdd)}"));
         assert!(call.contains(",WIDE,FAR,_,_,>"), "{call}");
         assert!(flat.contains(
             "#[target_feature(enable=\"avx2,fma\")]#[cold]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_far("
