@@ -52,7 +52,7 @@ fn compare_at(
     ));
     let friction = case.spec.friction_in_dynamics(robot, qd);
     let tau_ref = dynamics_reference::inverse_dynamics(robot, q, qd, qdd, &g, &zero6) + &friction;
-    let tau = case.imp.inverse_dynamics(q, qd, &qdd);
+    let tau = case.imp.inverse_dynamics(q, qd, qdd);
     worst[3] = worst[3].max(check(
         case,
         "τ",

@@ -84,6 +84,20 @@
 //! the sine–cosine kernel's padding and Estrin schedule, had found nothing (−4 % to +15 %);
 //! why was not re-examined.
 //!
+//! The sines' far angles. The kernel's fallback for angles beyond its bound (10⁶ rad in `f64`,
+//! 10⁴ in `f32`: the platform's `sin_cos`, lane by lane) is a call, and a call in line clobbers
+//! every vector register: every value live across the kernel was spilled before it, though no
+//! robot's angles take that branch (G1's inverse dynamics copied its 70 velocities and
+//! accelerations to the stack). So a single-state body whose kernel takes several angles gets
+//! a second `const`, `FAR`, and the copies run `f_body::<true, false>`, whose kernel
+//! (`sin_cos_near`) returns `None` when an angle is beyond the bound; the body then returns
+//! `f_far(args)` with the arguments as passed (kept aside at its top: a body may shadow them).
+//! `f_far` is `f_body::<true, true>`, whose kernel keeps the fallback in line, compiled for
+//! AVX2 and FMA, cold and out of line: the copies' fused operations, so the same bits as they
+//! would have given, and a batch lane still equals the single call. Where no copy runs, `f_far`
+//! is never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03):
+//! the copies −2 to −15 % on the arms and trees, the UR5's generated library +20 % build time.
+//!
 //! A function with `const` generic parameters (the batch functions, `f<const B: usize>`) passes
 //! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
 //! (`mul_add_lanes`, `joint_sin_cos_rows`) are fused as the scalar ones are. A batch function
