@@ -95,8 +95,10 @@
 //! `f_far` is `f_body::<true, true>`, whose kernel keeps the fallback in line, compiled for
 //! AVX2 and FMA, cold and out of line: the copies' fused operations, so the same bits as they
 //! would have given, and a batch lane still equals the single call. Where no copy runs, `f_far`
-//! is never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03):
-//! the copies −2 to −15 % on the arms and trees, the UR5's generated library +20 % build time.
+//! is never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03),
+//! old and new code in one binary: G1's inverse dynamics −10 and −12 %, the UR5's and rand7's
+//! functions −1 to −11 %, mass matrices unchanged; the UR5's generated library +21 %
+//! instructions (a fourth body per function).
 //!
 //! A function with `const` generic parameters (the batch functions, `f<const B: usize>`) passes
 //! them on: `f_avx512::<B>` and `f_body::<WIDE, B>`; its body's `Lanes` helpers
