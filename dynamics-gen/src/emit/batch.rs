@@ -186,10 +186,10 @@ pub fn batch_functions(
                 } else if dispatched
                     && options.scalar == crate::options::Scalar::F64
                     && f.cols == 1
-                    && ops >= super::zmm::AVX2_MIN_OPS
+                    && ops >= super::zmm::VECTOR_MIN_OPS
                 {
                     any_token = true;
-                    format!(" On an AVX2 CPU without AVX-512, {} (the runtime's `Avx2`) where `B` is a multiple of {avx2}: the vectoriser's `B`-wide values spill there.", super::zmm::AVX2_MARK)
+                    format!(" For a body of {ops} operations with a vector result, {} (the runtime's `Avx512` and `Avx2`) where `B` is a multiple of a register's lanes ({avx512} and {avx2}): faster than the vectoriser's.", super::zmm::DOC_MARK)
                 } else {
                     String::new()
                 };
@@ -244,6 +244,7 @@ pub fn batch_functions(
             runtime,
             fuses,
             trig,
+            trig && !options.no_std && options.cpu_dispatch,
             any_token,
         ));
     }
@@ -422,6 +423,7 @@ fn lanes_helpers(
     runtime: &TokenStream,
     fuses: bool,
     trig: bool,
+    dispatched: bool,
     tokens: bool,
 ) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
@@ -473,12 +475,28 @@ fn lanes_helpers(
             fn sin_cos_rows_with<const K: usize, const B: usize, const F: bool>(
                 x: [#lanes; K],
             ) -> ([#lanes; K], [#lanes; K]) {
+                let ((), sin, cos) = Self::sin_cos_rows_by::<K, B, _, _>(x, |x, s, c, n| {
+                    Self::sin_cos_into::<F>(x, s, c, n)
+                });
+                (sin, cos)
+            }
+
+            /// `kernel(angles, sines, cosines, n)` on the `K·B` elements of `x` as one
+            /// array, and the sines and cosines back in rows.
+            #[inline(always)]
+            fn sin_cos_rows_by<const K: usize, const B: usize, R, G>(
+                x: [#lanes; K],
+                kernel: G,
+            ) -> (R, [#lanes; K], [#lanes; K])
+            where
+                G: FnOnce(&[#t], &mut [#t], &mut [#t], usize) -> R,
+            {
                 let mut xs = [[0.0; B]; K];
                 for (d, x) in xs.iter_mut().zip(&x) {
                     *d = x.0;
                 }
                 let (mut s, mut c) = ([[0.0; B]; K], [[0.0; B]; K]);
-                Self::sin_cos_into::<F>(
+                let r = kernel(
                     xs.as_flattened(),
                     s.as_flattened_mut(),
                     c.as_flattened_mut(),
@@ -488,7 +506,35 @@ fn lanes_helpers(
                 for (((s, c), sin), cos) in s.iter().zip(&c).zip(&mut sin).zip(&mut cos) {
                     (sin.0, cos.0) = (*s, *c);
                 }
-                (sin, cos)
+                (r, sin, cos)
+            }
+        }
+    });
+    // The dispatched bodies' kernel: the far angles are the caller's (`super::dispatch`).
+    let near = (trig && dispatched).then(|| {
+        quote! {
+            /// [`Self::sin_cos_rows_with`] in a dispatched batch body, where the angles
+            /// beyond the kernel's bound are the caller's: when `F` (the AVX-512 and AVX2
+            /// copies), `None` if any is (the body then calls the single-state function once
+            /// per state), the same sines and cosines otherwise; when not `F`, those of
+            /// [`Self::sin_cos_rows_with`], its fallback included. In line in a copy, that
+            /// fallback's calls of the platform's `sin_cos` clobber every vector register, so
+            /// that the values live across the kernel are spilled before it. Unused where no
+            /// batch body is dispatched (a pendulum's are too small).
+            #[inline(always)]
+            #[allow(dead_code)]
+            fn sin_cos_rows_near<const K: usize, const B: usize, const F: bool>(
+                x: [#lanes; K],
+            ) -> ::core::option::Option<([#lanes; K], [#lanes; K])> {
+                if !F {
+                    return ::core::option::Option::Some(Self::sin_cos_rows_with::<K, B, F>(x));
+                }
+                match Self::sin_cos_rows_by::<K, B, _, _>(x, |x, s, c, n| {
+                    Self::sin_cos_poly::<F>(x, s, c, n)
+                }) {
+                    (false, sin, cos) => ::core::option::Option::Some((sin, cos)),
+                    (true, ..) => ::core::option::Option::None,
+                }
             }
         }
     });
@@ -534,7 +580,7 @@ fn lanes_helpers(
             }
         }
     });
-    quote!(#mul_add #sin_cos #tokens)
+    quote!(#mul_add #sin_cos #near #tokens)
 }
 
 #[cfg(test)]

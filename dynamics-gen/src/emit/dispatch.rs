@@ -258,6 +258,8 @@ struct Used {
     sin_cos: bool,
     /// Kernels whose far angles return the `*_far` function's result ([`wide_tokens`]).
     far: usize,
+    /// Batch bodies' kernels whose far angles return the single-state function's results.
+    far_rows: usize,
     /// The vector helpers of packed bodies that the bodies call ([`super::pack`]).
     vector: std::collections::BTreeSet<String>,
 }
@@ -672,7 +674,10 @@ fn has_mark(item: &[TokenTree], mark: &str) -> bool {
 /// The three functions for the eligible `item`.
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
-        let fused = wide_body(sig.body.clone(), used, None);
+        let far = batch_far_call(&sig.name, &sig.arg_names);
+        let rows_before = used.far_rows;
+        let fused = wide_body(sig.body.clone(), used, far.as_ref());
+        let fused = with_far_args(fused, &sig.arg_names, used.far_rows > rows_before);
         let z_body = super::zmm::token_body(&fused);
         return zmm_only(item, sig, z_body, scalar);
     }
@@ -699,22 +704,19 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
     // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
     // `X_far` must get the originals.
-    let far_call = quote!({
-        let (#(#arg_names,)*) = far_args;
-        unsafe { self.#far #turbofish (#(#arg_names),*) }
+    let far_call = batch_far_call(&name, &arg_names).unwrap_or_else(|| {
+        quote!({
+            let (#(#arg_names,)*) = far_args;
+            unsafe { self.#far #turbofish (#(#arg_names),*) }
+        })
     });
-    let far_before = used.far;
+    let (far_before, rows_before) = (used.far, used.far_rows);
     let fused = wide_body(body, used, Some(&far_call));
     let has_far = used.far > far_before;
-    let fused = if has_far {
-        quote!(let far_args = (#(#arg_names,)*); #fused)
-    } else {
-        fused
-    };
-    // A large batch body's AVX-512 and AVX2 copies: their lane arithmetic as instructions;
-    // a mid-sized one's AVX2 copy alone (`zmm::AVX2_MARK`).
-    let both = has_mark(item, super::zmm::DOC_MARK);
-    let z_body = (both || has_mark(item, super::zmm::AVX2_MARK))
+    let fused = with_far_args(fused, &arg_names, has_far || used.far_rows > rows_before);
+    // A large batch body's AVX-512 and AVX2 copies (and a mid-sized one's with a vector
+    // result): their lane arithmetic as instructions.
+    let z_body = has_mark(item, super::zmm::DOC_MARK)
         .then(|| super::zmm::token_body(&fused))
         .flatten();
     let cfg = dispatch_cfg();
@@ -825,7 +827,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
     let plain = quote!(self.#body_fn::<true #not_far #(, #generic_names)*>(#(#arg_names),*));
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
-        let Some(z_body) = z_body.as_ref().filter(|_| both || isa == Isa::Avx2) else {
+        let Some(z_body) = z_body.as_ref() else {
             return (plain.clone(), quote!());
         };
         let body_z = format_ident!("{}_body_{}", name, isa.suffix());
@@ -933,6 +935,27 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         fn #body_fn<const WIDE: bool #far_generic #generics>(#args) #ret {
             #fused
         }
+    }
+}
+
+/// A batch function's far angles (`name` ends in `_batch`): the single-state function once
+/// per state, itself dispatched, so that each state's result is its bits, as the batch
+/// promises (`{ let (q, qd, qdd) = far_args; from_fn(|l| self.f(&q[l], &qd[l], &qdd[l])) }`).
+fn batch_far_call(name: &Ident, arg_names: &[Ident]) -> Option<TokenStream> {
+    let single = Ident::new(name.to_string().strip_suffix("_batch")?, name.span());
+    Some(quote!({
+        let (#(#arg_names,)*) = far_args;
+        ::core::array::from_fn(|l| self.#single(#(&#arg_names[l]),*))
+    }))
+}
+
+/// `body` with the arguments as passed kept aside at its top (`far_args`) when `far` (its
+/// kernel's far angles return through them).
+fn with_far_args(body: TokenStream, arg_names: &[Ident], far: bool) -> TokenStream {
+    if far {
+        quote!(let far_args = (#(#arg_names,)*); #body)
+    } else {
+        body
     }
 }
 
@@ -1655,8 +1678,26 @@ fn wide_tokens(
             TokenTree::Ident(i) if i == "mul_add_lanes" && after_self_path(&out) => {
                 out.extend(quote!(mul_add_lanes_with::<_, WIDE>));
             }
+            // A batch body's: where the caller takes the far angles (`far`), `match
+            // Self::sin_cos_rows_near::<…>(x) { Some(v) => v, None => return far }`.
             TokenTree::Ident(i) if i == "joint_sin_cos_rows" && after_self_path(&out) => {
-                out.extend(quote!(sin_cos_rows_with::<_, _, WIDE>));
+                match (far, tokens.peek()) {
+                    (Some(far), Some(TokenTree::Group(g)))
+                        if g.delimiter() == Delimiter::Parenthesis =>
+                    {
+                        let x = wide_tokens(g.stream(), used, inputs, None);
+                        tokens.next();
+                        used.far_rows += 1;
+                        out.truncate(out.len() - 3);
+                        out.extend(quote! {
+                            match Self::sin_cos_rows_near::<_, _, WIDE>(#x) {
+                                ::core::option::Option::Some(v) => v,
+                                ::core::option::Option::None => return #far,
+                            }
+                        });
+                    }
+                    _ => out.extend(quote!(sin_cos_rows_with::<_, _, WIDE>)),
+                }
             }
             TokenTree::Ident(i) if i == "joint_sin_cos" && after_self_path(&out) => {
                 // `::<K, P>(args)`: K a literal, P a literal or a `{ … }` block.
@@ -1928,20 +1969,25 @@ mod tests {
         ));
         // Its gravity batch is below both bounds: the vectoriser's code, and no token.
         assert!(!solo.contains("gravity_batch_body_avx"));
-        // The UR5's inverse dynamics (297 operations, a vector) is above `AVX2_MIN_OPS` and
-        // below `MIN_OPS`: a body of instructions in the AVX2 copy alone. Its gravity (too
-        // small) and mass matrix (a matrix) keep the vectoriser's code in both copies.
+        // The UR5's inverse dynamics (302 operations, a vector) is above `VECTOR_MIN_OPS` and
+        // below `MIN_OPS`: bodies of instructions in both copies. Its gravity (too small) and
+        // mass matrix (a matrix) keep the vectoriser's code in both copies.
         let ur5 = crate::Builder::new("ur5").generate().expect("generates");
         assert!(ur5.contains("unsafe fn inverse_dynamics_batch_body_avx2("));
-        assert!(ur5.contains(super::super::zmm::AVX2_MARK));
-        assert!(!ur5.contains("_batch_body_avx512") && !ur5.contains("mass_matrix_batch_body_avx"));
+        assert!(ur5.contains("unsafe fn inverse_dynamics_batch_body_avx512("));
+        assert!(ur5.contains("For a body of 302 operations with a vector result"));
+        assert!(!ur5.contains("mass_matrix_batch_body_avx"));
         assert!(!ur5.contains("gravity_batch_body_avx"));
-        let k = ur5
-            .find("unsafe extern \"C\" fn inverse_dynamics_batch_avx512<")
-            .expect("the AVX-512 copy");
-        let copy = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
-        assert!(copy.contains("self.inverse_dynamics_batch_body::<true, B>(q, qd, qdd)"));
-        assert!(!copy.contains("B % "));
+        // Their kernels leave the far angles to the single-state function.
+        for isa in ["avx2", "avx512"] {
+            let k = ur5
+                .find(&format!("unsafe fn inverse_dynamics_batch_body_{isa}("))
+                .expect("the body");
+            let body = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
+            assert!(body.contains("let far_args = (q, qd, qdd);"), "{body}");
+            assert!(body.contains("match Self::sin_cos_rows_near::<"), "{body}");
+            assert!(body.contains("self.inverse_dynamics(&q[l], &qd[l], &qdd[l])"), "{body}");
+        }
         // Not for `f32`, whose AVX2 register holds 8 lanes.
         let f32 = crate::Builder::new("ur5")
             .scalar(crate::options::Scalar::F32)
@@ -2099,7 +2145,8 @@ mod tests {
             .split_whitespace()
             .collect();
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
-        assert!(batch.contains("Self::sin_cos_rows_with::<_,_,WIDE,>("));
+        assert!(batch.contains("matchSelf::sin_cos_rows_near::<_,_,WIDE,>("));
+        assert!(batch.contains("None=>{return{let(q,qd,qdd)=far_args;"), "{batch}");
         assert!(!batch.contains("Self::mul_add_lanes("));
         // Its wrapper is inlined; where no copy runs it calls `_portable`, an out-of-line
         // `extern "C"` function everywhere. A single-state function stays `#[inline]`; its

@@ -23,7 +23,8 @@
 //! Solo-12's inverse dynamics 121.7–123.4 → 86.8–88.7 ns (1.27–1.29× → 1.77–1.80× single
 //! calls), Talos' upper body 184.6–186.1 → 126.1–127.4 ns (1.36–1.39× → 2.00–2.03×). Small
 //! bodies, which the vectoriser handles whole, lost a little in a first scratch version (the
-//! UR5's inverse dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`].
+//! UR5's inverse dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), hence [`MIN_OPS`];
+//! `f64` bodies with a vector result get them from [`VECTOR_MIN_OPS`] on.
 //!
 //! A body of more than [`super::batch::MAX_LANES_OPS`] operations, which the vectoriser
 //! leaves mostly scalar (Solo-12's forward dynamics with `B` = 8 ran at 0.64–0.71× of single
@@ -45,31 +46,38 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{parse_quote, BinOp, Expr, GenericArgument, Pat, UnOp};
 
 /// The fewest lane operations (after inlining) for a batch body to get its copies of
-/// instructions: the UR5's and the Panda's inverse dynamics (297 and 687) keep the
-/// vectoriser's in their AVX-512 copies (their AVX2 copies: [`AVX2_MIN_OPS`]), Solo-12's
-/// (1,310) gets it.
+/// instructions whatever its result: Solo-12's inverse dynamics (1,310) gets them. Below it
+/// only an `f64` body with a vector result does ([`VECTOR_MIN_OPS`]); mass matrices keep the
+/// vectoriser's body (see there).
 pub const MIN_OPS: usize = 1000;
 
 /// The fewest lane operations for an `f64` batch body with a vector result (inverse and
-/// forward dynamics, gravity) to get its body of instructions in the AVX2 copy alone
-/// ([`AVX2_MARK`]): there a body of the vectoriser's, `B` = 8, holds each value in two
-/// 256-bit registers, and spills. Measured on a Zen 3 (AVX2 and FMA, no AVX-512; a scratch
-/// harness, the code before and after in one binary, `B` = 8 against 8 single calls of the
-/// same code, medians of 31 interleaved rounds, two runs; README "Batches of states"): the
-/// UR5's inverse dynamics (297 operations) 1.83×, 1.39× → 1.82×, 1.89× single calls (316 →
-/// 264 instructions per state, the kernel's change included), the Panda's (687) 1.63×, 1.51×
-/// → 2.07×, 2.14×, the UR5's forward dynamics (562) 1.97×, 1.86× → 2.61×, 2.34×. The UR5's
+/// forward dynamics, gravity) to get its bodies of instructions in both copies.
+///
+/// In the AVX2 copy (measured on a Zen 3, AVX2 and FMA, no AVX-512; a scratch harness, the
+/// code before and after in one binary, `B` = 8 against 8 single calls of the same code,
+/// medians of 31 interleaved rounds, two runs; README "Batches of states"): a body of the
+/// vectoriser's, `B` = 8, holds each value in two 256-bit registers, and spills. The UR5's
+/// inverse dynamics (297 operations) 1.83×, 1.39× → 1.82×, 1.89× single calls (316 → 264
+/// instructions per state, the kernel's change included), the Panda's (687) 1.63×, 1.51× →
+/// 2.07×, 2.14×, the UR5's forward dynamics (562) 1.97×, 1.86× → 2.61×, 2.34×. The UR5's
 /// gravity (16 operations) lost in a first trial (1.74 → 1.45×): the body of instructions runs
 /// once per register, and a small body does not pay for the calls; mass matrices lost more
-/// (1.33 → 0.94×), their 4 × 36 results copied out of each register's call. `f32`'s AVX2
-/// register holds 8 lanes, the vectoriser's body one register per value: not measured, left
-/// alone.
-pub const AVX2_MIN_OPS: usize = 250;
-
-/// The words of a batch function's doc comment that ask the dispatch for a body of
-/// instructions in the AVX2 copy alone ([`AVX2_MIN_OPS`]); its AVX-512 copy keeps the
-/// vectoriser's body.
-pub const AVX2_MARK: &str = "its AVX2 copy computes each operation as one vector instruction";
+/// (1.33 → 0.94×), their 4 × 36 results copied out of each register's call.
+///
+/// In the AVX-512 copy these bodies kept the vectoriser's at first (a first scratch version
+/// lost: the UR5's inverse dynamics 22.7 → 25.6 ns, the Panda's 37.8 → 40.8 ns), until the
+/// kernel's fallback left the copies (`super::dispatch`, "far angles"): with it gone, on a Zen
+/// 4 (old and new code in one binary, `B` = 8 against 8 single calls, medians of 41
+/// interleaved rounds, two runs), the Panda's inverse dynamics (693 operations) ran at 2.09×,
+/// 2.21× single calls with the vectoriser's body and 2.64×, 2.46× with the instructions,
+/// rand7's (983) 2.57×, 2.63× and 2.93×, 2.76×, the UR5's (302) 2.22×, 2.42× and 2.49×,
+/// 2.31×, the UR5's forward dynamics (567) 2.71×, 2.75× and 3.04×, 2.87×. Gravity (Panda 104,
+/// rand7 203 operations) gained nothing (2.30×, 2.42× and 2.24×, 2.16×; 2.10×, 2.04× and
+/// 2.11×, 1.99×), mass matrices lost (Panda 1.91×, 2.37× → 1.77×, 2.21×; UR5 1.82×, 2.59× →
+/// 1.68×, 2.32×), so the bound stays 250. `f32`'s registers hold twice the lanes, the
+/// vectoriser's body one register per value at `B` = 8: not measured, left alone.
+pub const VECTOR_MIN_OPS: usize = 250;
 
 /// The words of a batch function's doc comment that ask the dispatch for the bodies of
 /// instructions ([`super::batch`] writes them for bodies of at least [`MIN_OPS`] operations).
