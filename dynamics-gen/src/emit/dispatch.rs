@@ -1986,7 +1986,10 @@ mod tests {
             let body = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
             assert!(body.contains("let far_args = (q, qd, qdd);"), "{body}");
             assert!(body.contains("match Self::sin_cos_rows_near::<"), "{body}");
-            assert!(body.contains("self.inverse_dynamics(&q[l], &qd[l], &qdd[l])"), "{body}");
+            assert!(
+                body.contains("self.inverse_dynamics(&q[l], &qd[l], &qdd[l])"),
+                "{body}"
+            );
         }
         // Not for `f32`, whose AVX2 register holds 8 lanes.
         let f32 = crate::Builder::new("ur5")
@@ -2146,7 +2149,10 @@ mod tests {
             .collect();
         assert!(batch.contains("Self::mul_add_lanes_with::<_,WIDE,>("));
         assert!(batch.contains("matchSelf::sin_cos_rows_near::<_,_,WIDE,>("));
-        assert!(batch.contains("None=>{return{let(q,qd,qdd)=far_args;"), "{batch}");
+        assert!(
+            batch.contains("None=>{return{let(q,qd,qdd)=far_args;"),
+            "{batch}"
+        );
         assert!(!batch.contains("Self::mul_add_lanes("));
         // Its wrapper is inlined; where no copy runs it calls `_portable`, an out-of-line
         // `extern "C"` function everywhere. A single-state function stays `#[inline]`; its
