@@ -31,19 +31,26 @@ macro_rules! batch {
         // Four `f64` states fill an AVX2 register but not an AVX-512 one: on a CPU with
         // AVX-512, a body too large for the vectoriser runs its AVX2 copy's instructions, the
         // others their AVX-512 copy's vectoriser body; four `f32` states fill neither.
-        check::<4>();
-        check::<{ 64 / std::mem::size_of::<$s>() }>();
+        // Each with every angle within the polynomial kernel's range (10⁶ in f64, 10⁴ in
+        // f32), and with one beyond it (a dispatched copy's kernel then leaves the batch to
+        // single-state calls; a portable body's takes that lane's fallback in line).
+        for far in [false, true] {
+            check::<4>(far);
+            check::<{ 64 / std::mem::size_of::<$s>() }>(far);
+        }
         CHECKED.fetch_add(1, Ordering::SeqCst);
-        fn check<const B: usize>() {
+        fn check<const B: usize>(far: bool) {
             use dynamics_tests::generated::$m::Robot;
             let r = Robot::DEFAULT;
-            let mut q: [SVector<$s, $nq>; B] =
-                std::array::from_fn(|l| SVector::from_fn(|i, _| 0.3 + 0.1 * i as $s - 0.45 * l as $s));
-            // One angle beyond the polynomial kernel's range (10⁶ in f64, 10⁴ in f32): that lane
-            // takes the fallback, the others not.
-            q[2][$nq - 1] = 2.0e6;
-            let qd: [SVector<$s, $nv>; B] =
-                std::array::from_fn(|l| SVector::from_fn(|i, _| 0.5 - 0.2 * i as $s + 0.3 * l as $s));
+            let mut q: [SVector<$s, $nq>; B] = std::array::from_fn(|l| {
+                SVector::from_fn(|i, _| 0.3 + 0.1 * i as $s - 0.45 * l as $s)
+            });
+            if far {
+                q[2][$nq - 1] = 2.0e6;
+            }
+            let qd: [SVector<$s, $nv>; B] = std::array::from_fn(|l| {
+                SVector::from_fn(|i, _| 0.5 - 0.2 * i as $s + 0.3 * l as $s)
+            });
             let x: [SVector<$s, $nv>; B] =
                 std::array::from_fn(|l| SVector::from_fn(|i, _| 0.7 * i as $s - 1.0 + l as $s));
             let tau = r.inverse_dynamics_batch(&q, &qd, &x);
