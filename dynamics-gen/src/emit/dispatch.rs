@@ -938,14 +938,31 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     }
 }
 
-/// A batch function's far angles (`name` ends in `_batch`): the single-state function once
-/// per state, itself dispatched, so that each state's result is its bits, as the batch
-/// promises (`{ let (q, qd, qdd) = far_args; from_fn(|l| self.f(&q[l], &qd[l], &qdd[l])) }`).
+/// A batch function's far angles (`name` ends in `_batch`): its single-state function once per
+/// state, whose copies give the same bits as the batch's (`{ let (q, qd, qdd) = far_args;
+/// from_fn(|l| … f_avx2(&q[l], &qd[l], &qdd[l]) …) }`). A batch is dispatched only with its
+/// single-state function, so both of these exist: where the AVX2 copies do, `f_avx2` (every
+/// CPU that runs a batch copy has AVX2 and FMA), not the wrapper `f`, whose CPU check an
+/// `extern "C"` copy must not reach (its first call detects the CPU, a call that may unwind);
+/// elsewhere `f_portable`, there compiled with FMA or for another architecture, where the
+/// batch's copies fuse alike or do not exist.
 fn batch_far_call(name: &Ident, arg_names: &[Ident]) -> Option<TokenStream> {
-    let single = Ident::new(name.to_string().strip_suffix("_batch")?, name.span());
+    let single = name.to_string();
+    let single = single.strip_suffix("_batch")?;
+    let (avx2, portable) = (
+        format_ident!("{}_avx2", single),
+        format_ident!("{}_portable", single),
+    );
+    let cond = avx2_copy_cond();
     Some(quote!({
         let (#(#arg_names,)*) = far_args;
-        ::core::array::from_fn(|l| self.#single(#(&#arg_names[l]),*))
+        ::core::array::from_fn(|l| {
+            #[cfg(#cond)]
+            let v = unsafe { self.#avx2(#(&#arg_names[l]),*) };
+            #[cfg(not(#cond))]
+            let v = self.#portable(#(&#arg_names[l]),*);
+            v
+        })
     }))
 }
 
@@ -1983,13 +2000,18 @@ mod tests {
             let k = ur5
                 .find(&format!("unsafe fn inverse_dynamics_batch_body_{isa}("))
                 .expect("the body");
-            let body = &ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")];
-            assert!(body.contains("let far_args = (q, qd, qdd);"), "{body}");
-            assert!(body.contains("match Self::sin_cos_rows_near::<"), "{body}");
+            let body: String = ur5[k..k + ur5[k..].find("\n    }\n").expect("its end")]
+                .split_whitespace()
+                .collect();
+            assert!(body.contains("letfar_args=(q,qd,qdd);"), "{body}");
+            assert!(body.contains("matchSelf::sin_cos_rows_near::<"), "{body}");
+            // Where the AVX2 copies exist, the single-state function's; its portable body
+            // elsewhere (not the wrapper, whose CPU detection may unwind).
             assert!(
-                body.contains("self.inverse_dynamics(&q[l], &qd[l], &qdd[l])"),
+                body.contains("letv=unsafe{self.inverse_dynamics_avx2(&q[l],&qd[l],&qdd[l])};"),
                 "{body}"
             );
+            assert!(body.contains("letv=self.inverse_dynamics_portable(&q[l],&qd[l],&qdd[l]);"));
         }
         // Not for `f32`, whose AVX2 register holds 8 lanes.
         let f32 = crate::Builder::new("ur5")
