@@ -674,7 +674,7 @@ fn has_mark(item: &[TokenTree], mark: &str) -> bool {
 /// The three functions for the eligible `item`.
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
-        let far = batch_far_call(&sig.name, &sig.arg_names);
+        let far = batch_far_call(&sig.name, &sig.arg_names, &sig.ret);
         let rows_before = used.far_rows;
         let fused = wide_body(sig.body.clone(), used, far.as_ref());
         let fused = with_far_args(fused, &sig.arg_names, used.far_rows > rows_before);
@@ -704,7 +704,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
     // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
     // `X_far` must get the originals.
-    let far_call = batch_far_call(&name, &arg_names).unwrap_or_else(|| {
+    let far_call = batch_far_call(&name, &arg_names, &ret).unwrap_or_else(|| {
         quote!({
             let (#(#arg_names,)*) = far_args;
             unsafe { self.#far #turbofish (#(#arg_names),*) }
@@ -938,17 +938,25 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     }
 }
 
-/// A batch function's far angles (`name` ends in `_batch`): its single-state function once per
-/// state, whose copies give the same bits as the batch's (`{ let (q, qd, qdd) = far_args;
-/// from_fn(|l| … f_avx2(&q[l], &qd[l], &qdd[l]) …) }`). A batch is dispatched only with its
-/// single-state function, so both of these exist: where the AVX2 copies do, `f_avx2` (every
-/// CPU that runs a batch copy has AVX2 and FMA), not the wrapper `f`, whose CPU check an
-/// `extern "C"` copy must not reach (its first call detects the CPU, a call that may unwind);
-/// elsewhere `f_portable`, there compiled with FMA or for another architecture, where the
-/// batch's copies fuse alike or do not exist.
-fn batch_far_call(name: &Ident, arg_names: &[Ident]) -> Option<TokenStream> {
+/// A batch function's far angles (`name` ends in `_batch`, `ret` its `-> [R; B]`): its
+/// single-state function once per state, whose copies give the same bits as the batch's. A
+/// batch is dispatched only with its single-state function, so both of these exist: where the
+/// AVX2 copies do, `f_avx2` (every CPU that runs a batch copy has AVX2 and FMA), not the
+/// wrapper `f`, whose CPU check an `extern "C"` copy must not reach (its first call detects
+/// the CPU, a call that may unwind); elsewhere `f_portable`, there compiled with FMA or for
+/// another architecture, where the batch's copies fuse alike or do not exist. A `while` loop
+/// writing the results in place: in this cold branch the optimiser left `from_fn`'s closure
+/// out of line, a call that may unwind (and so an abort path in the `extern "C"` copy).
+///
+/// ```text
+/// { let (q, qd, qdd) = far_args; let mut out = MaybeUninit::<[R; B]>::uninit(); let mut l = 0;
+///   while l < B { out.as_mut_ptr().cast::<R>().add(l).write(f_avx2(&q[l], &qd[l], &qdd[l])); l += 1; }
+///   out.assume_init() }
+/// ```
+fn batch_far_call(name: &Ident, arg_names: &[Ident], ret: &TokenStream) -> Option<TokenStream> {
     let single = name.to_string();
     let single = single.strip_suffix("_batch")?;
+    let elem = array_elem(ret)?;
     let (avx2, portable) = (
         format_ident!("{}_avx2", single),
         format_ident!("{}_portable", single),
@@ -956,13 +964,19 @@ fn batch_far_call(name: &Ident, arg_names: &[Ident]) -> Option<TokenStream> {
     let cond = avx2_copy_cond();
     Some(quote!({
         let (#(#arg_names,)*) = far_args;
-        ::core::array::from_fn(|l| {
+        let mut out = ::core::mem::MaybeUninit::<[#elem; B]>::uninit();
+        let mut l = 0;
+        while l < B {
             #[cfg(#cond)]
             let v = unsafe { self.#avx2(#(&#arg_names[l]),*) };
             #[cfg(not(#cond))]
             let v = self.#portable(#(&#arg_names[l]),*);
-            v
-        })
+            // SAFETY: `l < B`, within `out`.
+            unsafe { out.as_mut_ptr().cast::<#elem>().add(l).write(v) };
+            l += 1;
+        }
+        // SAFETY: the loop wrote all `B` results.
+        unsafe { out.assume_init() }
     }))
 }
 
@@ -1881,6 +1895,8 @@ mod tests {
                 assert!(body.contains(method), "{method}");
             }
             assert!(body.matches("lett").count() > 100);
+            // (The far angles' loop counts states: `l += 1`, a `usize`.)
+            let body = body.replacen("l+=1;", "", 1);
             assert!(
                 !body.contains('+') && !body.contains('*'),
                 "an operator left"
