@@ -263,10 +263,9 @@ struct Used {
     any: bool,
     mul_add: bool,
     sin_cos: bool,
-    /// Kernels whose far angles return the `*_far` function's result ([`wide_tokens`]).
+    /// Kernels whose far angles return the caller's far call ([`wide_tokens`]): the `*_far`
+    /// function's result, or a batch's single-state calls.
     far: usize,
-    /// Batch bodies' kernels whose far angles return the single-state function's results.
-    far_rows: usize,
     /// The vector helpers of packed bodies that the bodies call ([`super::pack`]).
     vector: std::collections::BTreeSet<String>,
 }
@@ -682,9 +681,9 @@ fn has_mark(item: &[TokenTree], mark: &str) -> bool {
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
         let far = batch_far_call(&sig.name, &sig.arg_names, &sig.ret);
-        let rows_before = used.far_rows;
+        let before = used.far;
         let fused = wide_body(sig.body.clone(), used, far.as_ref());
-        let fused = with_far_args(fused, &sig.arg_names, used.far_rows > rows_before);
+        let fused = with_far_args(fused, &sig.arg_names, used.far > before);
         let z_body = super::zmm::token_body(&fused);
         return zmm_only(item, sig, z_body, scalar);
     }
@@ -711,16 +710,21 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
     // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
     // `X_far` must get the originals.
-    let far_call = batch_far_call(&name, &arg_names, &ret).unwrap_or_else(|| {
+    let batch_far = batch_far_call(&name, &arg_names, &ret);
+    let is_batch = batch_far.is_some();
+    let far_call = batch_far.unwrap_or_else(|| {
         quote!({
             let (#(#arg_names,)*) = far_args;
             unsafe { self.#far #turbofish (#(#arg_names),*) }
         })
     });
-    let (far_before, rows_before) = (used.far, used.far_rows);
+    let far_before = used.far;
     let fused = wide_body(body, used, Some(&far_call));
-    let has_far = used.far > far_before;
-    let fused = with_far_args(fused, &arg_names, has_far || used.far_rows > rows_before);
+    let exits = used.far > far_before;
+    let fused = with_far_args(fused, &arg_names, exits);
+    // A single-state body's exits need `FAR` and `X_far`; a batch's call its single-state
+    // function instead.
+    let has_far = exits && !is_batch;
     // A large batch body's AVX-512 and AVX2 copies (and a mid-sized one's with a vector
     // result): their lane arithmetic as instructions.
     let z_body = has_mark(item, super::zmm::DOC_MARK)
@@ -1725,7 +1729,7 @@ fn wide_tokens(
                     {
                         let x = wide_tokens(g.stream(), used, inputs, None);
                         tokens.next();
-                        used.far_rows += 1;
+                        used.far += 1;
                         out.truncate(out.len() - 3);
                         out.extend(quote! {
                             match Self::sin_cos_rows_near::<_, _, WIDE>(#x) {
