@@ -1,7 +1,11 @@
 //! How many floating-point loads, stores and multiply-adds one x86-64 core runs per cycle: blocks
 //! of eight independent instructions in an `asm!` loop, best of 7 runs of 2·10⁷ iterations.
-//! `docs/performance.md` ("One vector store per cycle") has this Zen 3's figures; they say which
-//! port bounds a generated body (count its instructions of each kind with `objdump`).
+//! `docs/performance.md` ("One vector store per cycle") has this Zen 3's figures and "What bounds
+//! the cells below 20×" the Zen 4's; they say which port bounds a generated body (count its
+//! instructions of each kind with `objdump`). The multiplication lines write their destinations
+//! without reading them, so that the eight are independent: how many multiplication-class
+//! instructions (multiplications and multiply-adds share those units) start per cycle, for
+//! scalars, 256-bit and 512-bit registers (the 512-bit lines need AVX-512).
 //!
 //! ```sh
 //! rustc -O --edition 2021 bench/ports.rs -o /tmp/ports && /tmp/ports
@@ -115,6 +119,45 @@ fn main() {
         mov [rdi+48], rax\nmov [rdi+56], rax"
         ),
     );
+    report(
+        "8 f64 multiplications (vmulsd)",
+        block!(
+            "vmulsd xmm0, xmm8, xmm9\nvmulsd xmm1, xmm8, xmm9\n\
+        vmulsd xmm2, xmm8, xmm9\nvmulsd xmm3, xmm8, xmm9\nvmulsd xmm4, xmm8, xmm9\n\
+        vmulsd xmm5, xmm8, xmm9\nvmulsd xmm6, xmm8, xmm9\nvmulsd xmm7, xmm8, xmm9"
+        ),
+    );
+    report(
+        "8 f64 multiplications and 8 additions",
+        block!(
+            "vmulsd xmm0, xmm8, xmm9\nvaddsd xmm4, xmm10, xmm11\n\
+        vmulsd xmm1, xmm8, xmm9\nvaddsd xmm5, xmm10, xmm11\n\
+        vmulsd xmm2, xmm8, xmm9\nvaddsd xmm6, xmm10, xmm11\n\
+        vmulsd xmm3, xmm8, xmm9\nvaddsd xmm7, xmm10, xmm11\n\
+        vmulsd xmm0, xmm9, xmm8\nvaddsd xmm4, xmm11, xmm10\n\
+        vmulsd xmm1, xmm9, xmm8\nvaddsd xmm5, xmm11, xmm10\n\
+        vmulsd xmm2, xmm9, xmm8\nvaddsd xmm6, xmm11, xmm10\n\
+        vmulsd xmm3, xmm9, xmm8\nvaddsd xmm7, xmm11, xmm10"
+        ),
+    );
+    report(
+        "8 256-bit multiplications (vmulpd ymm)",
+        block!(
+            "vmulpd ymm0, ymm8, ymm9\nvmulpd ymm1, ymm8, ymm9\n\
+        vmulpd ymm2, ymm8, ymm9\nvmulpd ymm3, ymm8, ymm9\nvmulpd ymm4, ymm8, ymm9\n\
+        vmulpd ymm5, ymm8, ymm9\nvmulpd ymm6, ymm8, ymm9\nvmulpd ymm7, ymm8, ymm9"
+        ),
+    );
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        report(
+            "8 512-bit multiplications (vmulpd zmm)",
+            block!(
+                "vmulpd zmm0, zmm8, zmm9\nvmulpd zmm1, zmm8, zmm9\n\
+            vmulpd zmm2, zmm8, zmm9\nvmulpd zmm3, zmm8, zmm9\nvmulpd zmm4, zmm8, zmm9\n\
+            vmulpd zmm5, zmm8, zmm9\nvmulpd zmm6, zmm8, zmm9\nvmulpd zmm7, zmm8, zmm9"
+            ),
+        );
+    }
     report(
         "8 f64 loads and 4 f64 stores",
         block!(
