@@ -704,6 +704,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let body_fn = format_ident!("{}_body", name);
     // An angle beyond the kernel's bound: the copy returns `X_far`'s result ([`wide_tokens`]).
     let far = format_ident!("{}_far", name);
+    // `::<B, …>` after a generic function's name (the batch functions'), nothing otherwise.
     let turbofish = (!generic_names.is_empty()).then(|| quote!(::<#(#generic_names),*>));
     // SAFETY (in the generated code): reached only from the AVX-512 and AVX2 copies, which run
     // only on CPUs with AVX2 and FMA, the features `X_far` is compiled for.
@@ -746,11 +747,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds, and the sines and cosines \
          on the whole of the copy's registers (the AVX-512 and AVX2 copies)."
     );
-    let (fast_generics, fast_turbofish) = if generic_names.is_empty() {
-        (quote!(), quote!())
-    } else {
-        (quote!(<#generics>), quote!(::<#(#generic_names),*>))
-    };
+    let fast_generics = (!generic_names.is_empty()).then(|| quote!(<#generics>));
     let const_generics = generics.clone();
     let generics = if generic_names.is_empty() {
         quote!()
@@ -774,7 +771,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let not_far = has_far.then(|| quote!(, false));
     let portable_body =
         quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
-    let fallback = quote!(self.#portable #fast_turbofish (#(#arg_names),*));
+    let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
             " [`Self::{name}`] where an angle lies beyond the sines' bound (10⁶ rad for `f64`, \
@@ -902,12 +899,12 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             #cfg
             {
                 if Self::#has_fast() {
-                    return unsafe { self.#fast #fast_turbofish (#(#arg_names),*) };
+                    return unsafe { self.#fast #turbofish (#(#arg_names),*) };
                 }
                 #[cfg(#avx2)]
                 {
                     if Self::has_avx2() {
-                        return unsafe { self.#mid #fast_turbofish (#(#arg_names),*) };
+                        return unsafe { self.#mid #turbofish (#(#arg_names),*) };
                     }
                 }
                 #native_mid
