@@ -510,7 +510,9 @@ fn lanes_helpers(
             }
         }
     });
-    // The dispatched bodies' kernel: the far angles are the caller's (`super::dispatch`).
+    // The dispatched bodies' kernel: the far angles are the caller's (`super::dispatch`, which
+    // keeps it only where a batch body calls it: a pendulum's bodies are too small to be
+    // dispatched; `allow(dead_code)` for a block where nothing is dispatched at all).
     let near = (trig && dispatched).then(|| {
         quote! {
             /// [`Self::sin_cos_rows_with`] in a dispatched batch body, where the angles
@@ -519,8 +521,7 @@ fn lanes_helpers(
             /// per state), the same sines and cosines otherwise; when not `F`, those of
             /// [`Self::sin_cos_rows_with`], its fallback included. In line in a copy, that
             /// fallback's calls of the platform's `sin_cos` clobber every vector register, so
-            /// that the values live across the kernel are spilled before it. Unused where no
-            /// batch body is dispatched (a pendulum's are too small).
+            /// that the values live across the kernel are spilled before it.
             #[inline(always)]
             #[allow(dead_code)]
             fn sin_cos_rows_near<const K: usize, const B: usize, const F: bool>(

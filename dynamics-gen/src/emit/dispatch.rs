@@ -266,6 +266,9 @@ struct Used {
     /// Kernels whose far angles return the caller's far call ([`wide_tokens`]): the `*_far`
     /// function's result, or a batch's single-state calls.
     far: usize,
+    /// Whether a batch body's kernel became `sin_cos_rows_near`: the helper (which
+    /// `super::batch` emits wherever batch bodies may be dispatched) is kept only then.
+    rows_near: bool,
     /// The vector helpers of packed bodies that the bodies call ([`super::pack`]).
     vector: std::collections::BTreeSet<String>,
 }
@@ -528,7 +531,13 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
         .map(|s| s.name.to_string())
         .collect();
     let mut out = TokenStream::new();
+    // The batch kernel for the copies, held back until it is known whether a body calls it.
+    let mut rows_near = None;
     for (item, sig) in items.into_iter().zip(sigs) {
+        if fn_name(&item).is_some_and(|(_, n)| n == "sin_cos_rows_near") {
+            rows_near = Some(item);
+            continue;
+        }
         let follows = |s: &Signature| {
             s.generic_names.is_empty()
                 || s.name
@@ -551,6 +560,9 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
             }
             None => out.extend(item),
         }
+    }
+    if used.rows_near {
+        out.extend(rows_near.into_iter().flatten());
     }
     out
 }
@@ -1727,6 +1739,7 @@ fn wide_tokens(
                         let x = wide_tokens(g.stream(), used, inputs, None);
                         tokens.next();
                         used.far += 1;
+                        used.rows_near = true;
                         out.truncate(out.len() - 3);
                         out.extend(quote! {
                             match Self::sin_cos_rows_near::<_, _, WIDE>(#x) {
@@ -2121,6 +2134,19 @@ mod tests {
         let body = &body[..body.find("fnjacobian_body").unwrap_or(body.len())];
         assert!(body.contains("(&q.data.0[0],|joints|"), "{body}");
         assert!(!body.contains("=q.data.0;"), "{body}");
+    }
+
+    /// The batch kernel for the copies is kept where a dispatched batch body calls it, and
+    /// left out where none does (the pendulum's batch bodies are too small to dispatch).
+    #[test]
+    fn the_batch_kernel_for_the_copies_only_where_called() {
+        for (robot, kept) in [("ur5", true), ("pendulum", false)] {
+            let code = crate::Builder::new(robot).generate().expect("generates");
+            let flat: String = code.split_whitespace().collect();
+            assert_eq!(flat.contains("fnsin_cos_rows_near<"), kept, "{robot}");
+            assert_eq!(flat.contains("Self::sin_cos_rows_near::<"), kept, "{robot}");
+            assert!(flat.contains("fninverse_dynamics_batch<"), "{robot}");
+        }
     }
 
     /// Angles that read anything but one argument's inputs go through a copy, and the
