@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# What bounds a generated function below 20x the generic reference: its AVX-512 copy's
+# machine code counted, and the time its multiplications and its stores alone would take.
+#
+#   bash bench/floors.sh SIDE_BY_SIDE_OUTPUT [BENCH_BINARY]
+#
+# SIDE_BY_SIDE_OUTPUT: what the benchmark binary printed with SIDE_BY_SIDE set (README,
+# "Where issue #12's bars stand"; lines `side-by-side LABEL FUNCTION ours reference ratio q1
+# q3`). BENCH_BINARY: the binary that printed it (default: the newest
+# target/bench-default/release/deps/dynamics-*). For every single-state cell below RATIO (20 by
+# default) whose copy is found (the AVX-512 copies of the f64 code, `<module>::Robot::<function>_avx512`),
+# it disassembles the copy (objdump, Intel syntax) and prints:
+#   instr, bytes      instructions and code bytes of the copy
+#   mult              multiplication slots: vmul*/vfma*/vfnma*/vfms*/vfnms*, a 512-bit one twice
+#                     (Zen 4 has two units, and a zmm operation takes both)
+#   stores, spills    stores to memory (any width), of which to the stack ([rsp ...])
+#   memset            bytes zeroed by calls of memset (a result zeroed before its entries are
+#                     written; the size from the `mov edx` before the call)
+#   floor_mul         mult / 2 cycles, in ns at GHZ (default: the clock `bench/ports.rs`
+#                     calibrates now, with a chain of dependent multiply-adds; run this right
+#                     after the side-by-side run, as the machine's clock drifts)
+#   floor_st          (stores + memset / 32) / 1 per cycle, in ns (Zen 4 retires one
+#                     floating-point store a cycle; the zeroing counted as 32-byte stores)
+#   at20              the reference's median / RATIO: the time the bar allows
+#   needs             floor_mul / at20: the share of the multiplication units' peak the bar needs
+#   reaches           floor_mul / ours: the share the copy reaches now
+#   bound             "stores" where floor_st exceeds at20, "mult" where floor_mul does
+# A cell whose `needs` is near or above 100 %, or whose floor_st exceeds at20, cannot reach the
+# bar with that machine code's operations; one whose `reaches` is far below `needs` has room.
+# Counts are exact; the floors ignore everything else (latency, the front end, loads).
+set -euo pipefail
+SBS=${1:?usage: bash bench/floors.sh SIDE_BY_SIDE_OUTPUT [BENCH_BINARY]}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BIN=${2:-$(ls -t "$ROOT"/target/bench-default/release/deps/dynamics-* 2>/dev/null | grep -v '\.d$' | head -1)}
+[ -x "$BIN" ] || { echo "floors.sh: no benchmark binary (build it as the README says, or pass its path)" >&2; exit 1; }
+command -v objdump >/dev/null || { echo "floors.sh: needs objdump (binutils)" >&2; exit 1; }
+RATIO=${RATIO:-20}
+SYMS=$(mktemp)
+TMP=$(mktemp -d)
+trap 'rm -rf "$SYMS" "$TMP"' EXIT
+if [ -z "${GHZ:-}" ]; then
+  rustc -O --edition 2021 "$ROOT/bench/ports.rs" -o "$TMP/ports"
+  GHZ=$("$TMP/ports" | awk '/^clock:/ { print $2; exit }')
+  [ -n "$GHZ" ] || { echo "floors.sh: no clock from bench/ports.rs (x86-64 only); set GHZ" >&2; exit 1; }
+fi
+echo "clock: $GHZ GHz; bar: ${RATIO}x; binary: $BIN"
+nm -S --demangle "$BIN" | awk '$3 == "T" || $3 == "t"' >"$SYMS"
+
+# The module a side-by-side label's code is in (tests/src/generated.rs).
+module_of() {
+  for m in "urdf_$1" "tree_$1" "$1"; do
+    if grep -q " dynamics_tests::generated::$m::Robot::" "$SYMS"; then
+      echo "$m"
+      return
+    fi
+  done
+}
+
+printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %6s %6s %6s %7s %s\n' \
+  robot function instr bytes mult stores spills memset floor_mul floor_st at20 ours needs reaches bound
+awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < r + 0 { print $2, $3, $4, $5 }' "$SBS" |
+  while read -r label fn ours reference; do
+    m=$(module_of "$label")
+    line=$([ -n "$m" ] && grep " dynamics_tests::generated::$m::Robot::${fn}_avx512\$" "$SYMS" || true)
+    if [ -z "$line" ]; then
+      printf '%-18s %-30s (no AVX-512 copy found)\n' "$label" "$fn"
+      continue
+    fi
+    read -r start size _ <<<"$line"
+    objdump -d --no-show-raw-insn -M intel --start-address=$((16#$start)) \
+      --stop-address=$((16#$start + 16#$size)) "$BIN" |
+      awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" \
+        -v ours="$ours" -v ref="$reference" -v r="$RATIO" '
+        NF >= 2 && $1 ~ /^ *[0-9a-f]+:$/ {
+          n++
+          split($2, w, " ")
+          op = w[1]
+          args = substr($2, length(op) + 1)
+          if (op ~ /^v(mul|fn?madd|fn?msub)/) mult += (args ~ /zmm/) ? 2 : 1
+          # Intel syntax: a store writes its first operand, a memory reference.
+          if (args ~ /^ *[A-Z]+ PTR \[/ && op !~ /^(cmp|test|prefetch)/) {
+            stores++
+            if (args ~ /^ *[A-Z]+ PTR \[rsp/) spills++
+          }
+          if (op == "mov" && args ~ /^ *edx,0x[0-9a-f]+$/) edx = substr(args, index(args, "0x") + 2)
+          if (op == "call" && args ~ /memset/) memset += hex(edx)
+        }
+        function hex(h,   i, v) {
+          v = 0
+          for (i = 1; i <= length(h); i++) v = 16 * v + index("0123456789abcdef", substr(h, i, 1)) - 1
+          return v
+        }
+        END {
+          fm = mult / 2 / ghz
+          fs = (stores + memset / 32) / ghz
+          at = ref / r
+          bound = fs > at ? "stores" : fm > at ? "mult" : ""
+          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %6.1f %6.1f %5.0f%% %6.0f%% %s\n",
+            label, fn, n, bytes, mult, stores, spills, memset, fm, fs, at, ours,
+            100 * fm / at, 100 * fm / ours, bound
+        }'
+  done
