@@ -63,7 +63,7 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
     m=$(module_of "$label")
     line=$([ -n "$m" ] && grep " dynamics_tests::generated::$m::Robot::${fn}_avx512\$" "$SYMS" || true)
     if [ -z "$line" ]; then
-      printf '%-18s %-30s (no AVX-512 copy found)\n' "$label" "$fn"
+      printf '%-18s %-30s (no %s_avx512 symbol: not dispatched, or inlined into the benchmark)\n' "$label" "$fn" "$fn"
       continue
     fi
     read -r start size _ <<<"$line"
