@@ -40,7 +40,8 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$SYMS" "$TMP"' EXIT
 if [ -z "${GHZ:-}" ]; then
   rustc -O --edition 2021 "$ROOT/bench/ports.rs" -o "$TMP/ports"
-  GHZ=$("$TMP/ports" | awk '/^clock:/ { print $2; exit }')
+  "$TMP/ports" >"$TMP/ports.txt"
+  GHZ=$(awk '/^clock:/ { print $2; exit }' "$TMP/ports.txt")
   [ -n "$GHZ" ] || { echo "floors.sh: no clock from bench/ports.rs (x86-64 only); set GHZ" >&2; exit 1; }
 fi
 echo "clock: $GHZ GHz; bar: ${RATIO}x; binary: $BIN"
