@@ -31,7 +31,7 @@
 set -euo pipefail
 SBS=${1:?usage: bash bench/floors.sh SIDE_BY_SIDE_OUTPUT [BENCH_BINARY]}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-BIN=${2:-$(ls -t "$ROOT"/target/bench-default/release/deps/dynamics-* 2>/dev/null | grep -v '\.d$' | head -1)}
+BIN=${2:-$(ls -t "$ROOT"/target/bench-default/release/deps/dynamics-* 2>/dev/null | grep -v '\.d$' | sed -n 1p)}
 [ -x "$BIN" ] || { echo "floors.sh: no benchmark binary (build it as the README says, or pass its path)" >&2; exit 1; }
 command -v objdump >/dev/null || { echo "floors.sh: needs objdump (binutils)" >&2; exit 1; }
 RATIO=${RATIO:-20}
