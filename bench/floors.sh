@@ -21,13 +21,16 @@
 #                     after the side-by-side run, as the machine's clock drifts)
 #   floor_st          (stores + memset / 32) / 1 per cycle, in ns (Zen 4 retires one
 #                     floating-point store a cycle; the zeroing counted as 32-byte stores)
+#   floor_fetch       for a copy larger than a 32 KB instruction cache: bytes / FETCH, the
+#                     rate straight-line code that large runs at (bytes/ns; default: the
+#                     `fetch:` line of `bench/ports.rs`, measured now); `-` for smaller copies
 #   at20              the reference's median / RATIO: the time the bar allows
 #   needs             floor_mul / at20: the share of the multiplication units' peak the bar needs
 #   reaches           floor_mul / ours: the share the copy reaches now
-#   bound             "stores" where floor_st exceeds at20, "mult" where floor_mul does
+#   bound             "fetch", "stores" or "mult": the floors that exceed at20
 # A cell whose `needs` is near or above 100 %, or whose floor_st exceeds at20, cannot reach the
 # bar with that machine code's operations; one whose `reaches` is far below `needs` has room.
-# Counts are exact; the floors ignore everything else (latency, the front end, loads).
+# Counts are exact; the floors ignore everything else (latency, decoding, loads).
 set -euo pipefail
 SBS=${1:?usage: bash bench/floors.sh SIDE_BY_SIDE_OUTPUT [BENCH_BINARY]}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -38,13 +41,15 @@ RATIO=${RATIO:-20}
 SYMS=$(mktemp)
 TMP=$(mktemp -d)
 trap 'rm -rf "$SYMS" "$TMP"' EXIT
-if [ -z "${GHZ:-}" ]; then
+if [ -z "${GHZ:-}" ] || [ -z "${FETCH:-}" ]; then
   rustc -O --edition 2021 "$ROOT/bench/ports.rs" -o "$TMP/ports"
   "$TMP/ports" >"$TMP/ports.txt"
-  GHZ=$(awk '/^clock:/ { print $2; exit }' "$TMP/ports.txt")
-  [ -n "$GHZ" ] || { echo "floors.sh: no clock from bench/ports.rs (x86-64 only); set GHZ" >&2; exit 1; }
+  GHZ=${GHZ:-$(awk '/^clock:/ { print $2; exit }' "$TMP/ports.txt")}
+  FETCH=${FETCH:-$(awk '/^fetch:/ { print $2; exit }' "$TMP/ports.txt")}
+  [ -n "$GHZ" ] && [ -n "$FETCH" ] ||
+    { echo "floors.sh: no clock or fetch rate from bench/ports.rs (x86-64 only); set GHZ and FETCH" >&2; exit 1; }
 fi
-echo "clock: $GHZ GHz; bar: ${RATIO}x; binary: $BIN"
+echo "clock: $GHZ GHz; fetch beyond 32 KB: $FETCH bytes/ns; bar: ${RATIO}x; binary: $BIN"
 nm -S --demangle "$BIN" | awk '$3 == "T" || $3 == "t"' >"$SYMS"
 
 # The module a side-by-side label's code is in (tests/src/generated.rs).
@@ -57,8 +62,8 @@ module_of() {
   done
 }
 
-printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %6s %6s %6s %7s %s\n' \
-  robot function instr bytes mult stores spills memset floor_mul floor_st at20 ours needs reaches bound
+printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %11s %6s %6s %6s %7s %s\n' \
+  robot function instr bytes mult stores spills memset floor_mul floor_st floor_fetch at20 ours needs reaches bound
 awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < r + 0 { print $2, $3, $4, $5 }' "$SBS" |
   while read -r label fn ours reference; do
     m=$(module_of "$label")
@@ -70,7 +75,7 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
     read -r start size _ <<<"$line"
     objdump -d --no-show-raw-insn -M intel --start-address=$((16#$start)) \
       --stop-address=$((16#$start + 16#$size)) "$BIN" |
-      awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" \
+      awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" -v fetch="$FETCH" \
         -v ours="$ours" -v ref="$reference" -v r="$RATIO" '
         NF >= 2 && $1 ~ /^ *[0-9a-f]+:$/ {
           n++
@@ -95,9 +100,11 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
           fm = mult / 2 / ghz
           fs = (stores + memset / 32) / ghz
           at = ref / r
-          bound = fs > at ? "stores" : fm > at ? "mult" : ""
-          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %6.1f %6.1f %5.0f%% %6.0f%% %s\n",
-            label, fn, n, bytes, mult, stores, spills, memset, fm, fs, at, ours,
-            100 * fm / at, 100 * fm / ours, bound
+          ff = bytes > 32768 ? bytes / fetch : 0
+          bound = (ff > at ? " fetch" : "") (fs > at ? " stores" : "") (fm > at ? " mult" : "")
+          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %11s %6.1f %6.1f %5.0f%% %6.0f%% %s\n",
+            label, fn, n, bytes, mult, stores, spills, memset, fm, fs,
+            (ff > 0 ? sprintf("%.1f", ff) : "-"), at, ours, 100 * fm / at, 100 * fm / ours,
+            substr(bound, 2)
         }'
   done

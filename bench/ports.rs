@@ -16,6 +16,11 @@
 //! through `xmm0`–`xmm7` from one iteration to the next: the loop around the `asm!` does no
 //! floating-point work, so nothing else writes those registers (their values are garbage; only
 //! the dependency counts).
+//!
+//! The last two lines time straight-line code instead of a loop (the generated bodies are
+//! straight-line code): a body of 12.5 KB and one of 62.5 KB. Above the 32 KB instruction
+//! cache the second runs at the rate its bytes are fetched (`fetch:`, about 55 bytes/ns on the
+//! Zen 4 of `docs/performance.md`'s thirty-sixth section, against 70–90 below it).
 
 #[cfg(target_arch = "x86_64")]
 fn main() {
@@ -167,6 +172,49 @@ fn main() {
         vmovsd [rdi+64], xmm8\nvmovsd [rdi+72], xmm9\nvmovsd [rdi+80], xmm10\n\
         vmovsd [rdi+88], xmm11"
         ),
+    );
+    // Straight-line code, not a loop: a block of the generated bodies' kind (a load with a
+    // 32-bit displacement, a multiplication, a zero idiom, a load: 25 bytes, four independent
+    // instructions), repeated to a body smaller and one larger than a 32 KB instruction cache.
+    // The `fetch:` line is the rate beyond it, which `bench/floors.sh` reads: a body that large
+    // cannot run faster than its bytes arrive.
+    macro_rules! straight {
+        ($reps:literal) => {{
+            let buf = [0.0f64; 1024];
+            let p = buf.as_ptr();
+            let iters = 20_000u64;
+            let (mut best, mut bytes) = (f64::MAX, 0usize);
+            for _ in 0..7 {
+                let t = Instant::now();
+                for _ in 0..iters {
+                    // SAFETY: the block reads `buf` (8 KB) through `rdi` and clobbers the
+                    // registers it names; the two `lea`s measure its length.
+                    unsafe {
+                        asm!("2:", concat!(".rept ", $reps),
+                             "vmovsd xmm1, qword ptr [rdi + 0x800]", "vmulsd xmm2, xmm8, xmm9",
+                             "vxorps xmm3, xmm3, xmm3", "vmovsd xmm4, qword ptr [rdi + 0x1000]",
+                             ".endr", "3:", "lea {n}, [rip + 3b]", "lea {m}, [rip + 2b]",
+                             "sub {n}, {m}", n = out(reg) bytes, m = out(reg) _, in("rdi") p,
+                             out("xmm1") _, out("xmm2") _, out("xmm3") _, out("xmm4") _,
+                             out("xmm8") _, out("xmm9") _, options(nostack, readonly));
+                    }
+                }
+                best = best.min(t.elapsed().as_nanos() as f64 / iters as f64);
+            }
+            (bytes, best)
+        }};
+    }
+    let (small, t_small) = straight!("500");
+    println!(
+        "straight-line code of {small} bytes: {:.1} bytes/ns ({:.1} ns)",
+        small as f64 / t_small,
+        t_small
+    );
+    let (large, t_large) = straight!("2500");
+    println!(
+        "fetch: {:.1} bytes/ns (straight-line code of {large} bytes, beyond a 32 KB instruction cache: {:.1} ns)",
+        large as f64 / t_large,
+        t_large
     );
 }
 
