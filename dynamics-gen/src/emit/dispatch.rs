@@ -2073,7 +2073,7 @@ mod tests {
         );
     }
 
-    /// The angles are computed in the kernel from the input (offsets and mimic joints
+    /// The angles are computed in the kernel from the input (mimic joints and offsets
     /// included), and the pattern no longer binds the inputs only they read.
     #[test]
     fn the_kernel_computes_the_angles_from_the_input() {
@@ -2111,8 +2111,9 @@ mod tests {
             call.contains(">(&q.data.0[0],|joints|[joints[1],"),
             "{call}"
         );
-        // Each mimic finger reads its driver's input, plus an offset.
-        assert!(call.contains("joints[9]+0.61"), "{call}");
+        // Each mimic finger reads its driver's input (a finger that turns with it, at no
+        // offset, shares its angle).
+        assert!(call.contains("joints[9],"), "{call}");
         assert!(!call.contains(",q") && !call.contains("[q"), "{call}");
         assert!(!flat.contains("|()|"), "no angle goes through a copy");
         // The pattern: no input bound that nothing reads (the compiler would warn).
@@ -2127,6 +2128,15 @@ mod tests {
                 assert!(reads > 1, "{name} unread: {pattern}");
             }
         }
+        // A joint's home offset is added to its input in the kernel's argument.
+        let rand7 = crate::Builder::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/rand7.urdf"
+        ))
+        .generate()
+        .expect("generates");
+        let flat: String = rand7.split_whitespace().collect();
+        assert!(flat.contains("joints[1]+-2.189006490495273,"), "an offset");
         // Where the kernel reads every input the body used, no pattern is left.
         let ur5 = crate::Builder::new("ur5").generate().expect("generates");
         let flat: String = ur5.split_whitespace().collect();

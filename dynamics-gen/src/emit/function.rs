@@ -456,13 +456,22 @@ enum Binding {
 impl FunctionBody<'_> {
     /// The body of the function, as a block's statements: its nodes that equal a multiple of
     /// another merged ([`crate::expr::equivalent`]), then its sums re-associated for
-    /// instruction-level parallelism ([`crate::expr::reassociate`]).
+    /// instruction-level parallelism ([`crate::expr::reassociate`]) unless the sums as built
+    /// pack better: the re-association follows each product's uses, and where a tree's alike
+    /// limbs share a product on one side only (TALOS' arms are copies, not mirror images, so
+    /// their constants coincide differently) it associates their sums differently and they
+    /// no longer pack ([`super::pack`]); packed, they run 13–25 % faster than re-associated
+    /// (`docs/performance.md`, thirty-sixth session).
     pub fn tokens(&self) -> TokenStream {
         let merged = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);
-        let (graph, outputs) = match &merged {
-            Some((g, outputs)) => reassociate::reassociate(g, outputs),
-            None => reassociate::reassociate(self.graph, self.outputs),
+        let (built, built_outputs) = match &merged {
+            Some((g, outputs)) => (g, &outputs[..]),
+            None => (self.graph, self.outputs),
         };
+        let (mut graph, mut outputs) = reassociate::reassociate(built, built_outputs);
+        if self.packs_better_as_built(built, built_outputs, &graph, &outputs) {
+            (graph, outputs) = (built.clone(), built_outputs.to_vec());
+        }
         let ready = reassociate::ready_times(&graph);
         let body = FunctionBody {
             graph: &graph,
@@ -481,6 +490,35 @@ impl FunctionBody<'_> {
             ..body
         }
         .tokens_as_given()
+    }
+
+    /// Whether the packs of `built` (the sums as built) save more instructions than those of
+    /// `reassociated` (see [`Self::tokens`]); only dynamics bodies seeded by alike outputs
+    /// compare (a pose's rows pack either way).
+    fn packs_better_as_built(
+        &self,
+        built: &ExprGraph,
+        built_outputs: &[ExprId],
+        reassociated: &ExprGraph,
+        reassociated_outputs: &[ExprId],
+    ) -> bool {
+        if !matches!(self.pack, Packs::Alike(_)) {
+            return false;
+        }
+        let saved = |graph: &ExprGraph, outputs: &[ExprId]| {
+            let ready = reassociate::ready_times(graph);
+            let body = FunctionBody {
+                graph,
+                outputs,
+                ready: &ready,
+                ..*self
+            };
+            let live = graph.live(outputs);
+            let uses = graph.use_counts(outputs);
+            body.packs(&live, &uses)
+                .map_or(0, |p| super::pack::saved(&p.packing.packs))
+        };
+        saved(built, built_outputs) > saved(reassociated, reassociated_outputs)
     }
 
     /// The [`Plan`] of the packs `p` (see there).

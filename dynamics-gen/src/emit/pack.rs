@@ -209,7 +209,7 @@ fn gather_cost(n: usize, width: usize) -> i64 {
 }
 
 /// The scalar instructions `packs` save (see [`MIN_SAVED`]).
-fn saved(packs: &[Pack]) -> i64 {
+pub(crate) fn saved(packs: &[Pack]) -> i64 {
     let mut saved = 0i64;
     for pack in packs {
         let width = pack.lanes.iter().flatten().count();

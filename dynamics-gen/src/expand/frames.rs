@@ -193,16 +193,30 @@ fn perpendicular(z: &Vector3<f64>, hint: &Vector3<f64>) -> Vector3<f64> {
 }
 
 /// Home poses `T_{0,J_i}` of modified-DH joint frames (Craig's convention), along each
-/// joint's first child: `z_i` along axis i, `x_i` along the common normal from axis i to
-/// the axis of i's first child, origin where that normal leaves axis i (for parallel axes:
-/// where the parent's normal landed, so `d_i = 0`). A joint that is not its parent's first
-/// child (or a root joint) starts from the point of its axis nearest its parent's origin.
+/// joint's only child: `z_i` along axis i, `x_i` along the common normal from axis i to
+/// the axis of i's child, origin where that normal leaves axis i (for parallel axes:
+/// where the parent's normal landed, so `d_i = 0`). A joint with several children (or none)
+/// has its origin where its parent's normal landed and `x_i` nearest its parent's; a joint
+/// that is not its parent's only child (or a root joint) starts from the point of its axis
+/// nearest its parent's origin.
 fn dh_frames(lines: &[AxisLine], parents: &[Option<usize>]) -> Vec<Matrix4<f64>> {
     let n = lines.len();
     let mut first_child: Vec<Option<usize>> = vec![None; n];
+    let mut children = vec![0usize; n];
     for (j, p) in parents.iter().enumerate().rev() {
         if let Some(p) = p {
             first_child[*p] = Some(j);
+            children[*p] += 1;
+        }
+    }
+    // A joint with several children places its frame as a last joint does (on its axis where
+    // its parent's normal landed, `x` nearest the parent's), so that every child starts from
+    // the point of its axis nearest that origin and no child's constants are tuned to the
+    // frame: a tree's alike limbs (TALOS' and G1's arms off their torsos) keep one shape
+    // (`emit::pack`) instead of the first child's differing from its siblings'.
+    for (f, &c) in first_child.iter_mut().zip(&children) {
+        if c > 1 {
+            *f = None;
         }
     }
     let mut frames: Vec<Matrix4<f64>> = Vec::with_capacity(n);
