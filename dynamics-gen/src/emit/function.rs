@@ -460,7 +460,7 @@ impl FunctionBody<'_> {
     /// pack better: the re-association follows each product's uses, and where a tree's alike
     /// limbs share a product on one side only (TALOS' arms are copies, not mirror images, so
     /// their constants coincide differently) it associates their sums differently and they
-    /// no longer pack ([`super::pack`]); packed, they run 13–25 % faster than re-associated
+    /// no longer pack ([`super::pack`]); packed, they run 16–26 % faster than re-associated
     /// (`docs/performance.md`, thirty-sixth session).
     pub fn tokens(&self) -> TokenStream {
         let merged = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);

@@ -201,26 +201,27 @@ fn perpendicular(z: &Vector3<f64>, hint: &Vector3<f64>) -> Vector3<f64> {
 /// nearest its parent's origin.
 fn dh_frames(lines: &[AxisLine], parents: &[Option<usize>]) -> Vec<Matrix4<f64>> {
     let n = lines.len();
-    let mut first_child: Vec<Option<usize>> = vec![None; n];
-    let mut children = vec![0usize; n];
-    for (j, p) in parents.iter().enumerate().rev() {
+    // Each joint's only child. A joint with several children places its frame as a last
+    // joint does (on its axis where its parent's normal landed, `x` nearest the parent's), so
+    // that every child starts from the point of its axis nearest that origin and no child's
+    // constants are tuned to the frame: a tree's alike limbs (TALOS' and G1's arms off their
+    // torsos) keep one shape (`emit::pack`) instead of the first child's differing from its
+    // siblings'.
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (j, p) in parents.iter().enumerate() {
         if let Some(p) = p {
-            first_child[*p] = Some(j);
-            children[*p] += 1;
+            children[*p].push(j);
         }
     }
-    // A joint with several children places its frame as a last joint does (on its axis where
-    // its parent's normal landed, `x` nearest the parent's), so that every child starts from
-    // the point of its axis nearest that origin and no child's constants are tuned to the
-    // frame: a tree's alike limbs (TALOS' and G1's arms off their torsos) keep one shape
-    // (`emit::pack`) instead of the first child's differing from its siblings'.
-    for (f, &c) in first_child.iter_mut().zip(&children) {
-        if c > 1 {
-            *f = None;
-        }
-    }
+    let only_child: Vec<Option<usize>> = children
+        .iter()
+        .map(|c| match c[..] {
+            [j] => Some(j),
+            _ => None,
+        })
+        .collect();
     let mut frames: Vec<Matrix4<f64>> = Vec::with_capacity(n);
-    // Where the parent's common normal lands on axis i, for first children.
+    // Where the parent's common normal lands on axis i, for only children.
     let mut landing_of: Vec<Option<Vector3<f64>>> = vec![None; n];
     for i in 0..n {
         let AxisLine { point, dir: z } = &lines[i];
@@ -236,7 +237,7 @@ fn dh_frames(lines: &[AxisLine], parents: &[Option<usize>]) -> Vec<Matrix4<f64>>
         // [`FAR`], lies beside the axis, and a frame origin off the axis is a wrong model).
         let landing = landing_of[i].unwrap_or(parent_origin);
         let landing = point + z * z.dot(&(landing - point));
-        let (origin, x) = match first_child[i] {
+        let (origin, x) = match only_child[i] {
             Some(next_i) => {
                 let next = &lines[next_i];
                 let c = z.cross(&next.dir);
