@@ -135,14 +135,13 @@ pub enum Packs {
 
 /// The packs of the dynamics function `name` (its single-state body and its batch body's
 /// [`Plan`] alike): outputs of one shape, two lanes or more
-/// ([`super::pack::MIN_ALIKE_LANES`]). The mass matrix, alone or with the bias, keeps three
-/// lanes at least: bound by its stores, it ran 2–9 % slower with G1's legs in two lanes, where
-/// the other functions ran up to 19 % faster (`docs/performance.md`, twenty-eighth session).
-pub(crate) fn alike_packs(name: &str) -> Packs {
-    match name {
-        "mass_matrix" | "mass_matrix_and_bias" => Packs::Alike(3),
-        _ => Packs::Alike(super::pack::MIN_ALIKE_LANES),
-    }
+/// ([`super::pack::MIN_ALIKE_LANES`]). The mass matrix kept three lanes at least from the
+/// twenty-eighth session to the thirty-seventh (`docs/performance.md`), as with two it had
+/// run 2–9 % slower. Measured again once the copies' frames were aligned
+/// (`dispatch::aligns_frame`), two lanes made G1's mass matrix 7–12 % faster and TALOS' mass
+/// matrix with the bias 12 %.
+pub(crate) fn alike_packs(_name: &str) -> Packs {
+    Packs::Alike(super::pack::MIN_ALIKE_LANES)
 }
 
 /// What a batch body does as the single-state body's packs do, so that each state's results
