@@ -1964,6 +1964,45 @@ mod tests {
     }
 
     #[test]
+    fn copies_that_spill_vectors_align_their_frames() {
+        // The text of the copy `name` (from its `fn` to the next item), without whitespace.
+        fn copy(code: &str, name: &str) -> String {
+            let k = code
+                .find(&format!("fn {name}("))
+                .or_else(|| code.find(&format!("fn {name}<")))
+                .unwrap_or_else(|| panic!("{name}"));
+            let end = code[k..].find("\n    }\n").expect("its end");
+            code[k..k + end].split_whitespace().collect()
+        }
+        let talos = crate::Builder::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/talos_upper_body.urdf"
+        ))
+        .generate()
+        .expect("generates");
+        let ur5 = crate::Builder::new("ur5").generate().expect("generates");
+        let aligned = "Self::align_frame();";
+        // TALOS' packed inverse dynamics (both arms in lanes) and every batch copy: aligned.
+        for isa in ["avx512", "avx2"] {
+            assert!(copy(&talos, &format!("inverse_dynamics_{isa}")).contains(aligned));
+            assert!(copy(&ur5, &format!("inverse_dynamics_batch_{isa}")).contains(aligned));
+            // A chain's single-state bodies have no packs: their copies are as they were.
+            for f in ["inverse_dynamics", "jacobian_space", "gravity"] {
+                assert!(!copy(&ur5, &format!("{f}_{isa}")).contains(aligned), "{f}");
+            }
+        }
+        assert!(!copy(&talos, "inverse_dynamics_portable").contains(aligned));
+        let helper = copy(&talos, "align_frame");
+        assert!(helper.contains("#[repr(C,align(64))]"));
+        assert!(helper.contains("::core::hint::black_box(&line);"));
+        // The helper exists only where a copy calls it.
+        let pendulum = crate::Builder::new("pendulum")
+            .generate()
+            .expect("generates");
+        assert!(!pendulum.contains("fn align_frame("));
+    }
+
+    #[test]
     fn large_batch_bodies_get_avx512_and_avx2_bodies_of_instructions() {
         let solo = crate::Builder::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
