@@ -28,7 +28,7 @@
 //! kept out of line, and there [`out_of_line`] moves it into a private `extern "C"` function
 //! that the public one calls: see there why.
 
-use super::function::{alike_packs, Arg, FunctionBody, Output, MAX_UNSPLIT_LETS};
+use super::function::{Arg, FunctionBody, Output, ALIKE_PACKS, MAX_UNSPLIT_LETS};
 use crate::expr::{ExprGraph, ExprId};
 use crate::options::Options;
 use proc_macro2::{Ident, Span, TokenStream, TokenTree};
@@ -144,7 +144,7 @@ pub fn batch_functions(
                 self_ty: self_ty.as_ref(),
                 lanes,
                 ready: &[],
-                pack: alike_packs(f.single),
+                pack: ALIKE_PACKS,
                 plan: None,
             }
             .tokens()

@@ -129,20 +129,17 @@ pub enum Packs {
     /// gained nothing, see `docs/performance.md`).
     Rows,
     /// Outputs of one shape ([`super::pack::alike_seeds`]), at least this many to a seed: the
-    /// same joint of a tree's alike limbs (the dynamics; see [`alike_packs`]).
+    /// same joint of a tree's alike limbs (the dynamics; see [`ALIKE_PACKS`]).
     Alike(usize),
 }
 
-/// The packs of the dynamics function `name` (its single-state body and its batch body's
-/// [`Plan`] alike): outputs of one shape, two lanes or more
-/// ([`super::pack::MIN_ALIKE_LANES`]). The mass matrix kept three lanes at least from the
-/// twenty-eighth session to the thirty-seventh (`docs/performance.md`), as with two it had
-/// run 2–9 % slower. Measured again once the copies' frames were aligned
-/// (`dispatch::aligns_frame`), two lanes made G1's mass matrix 7–12 % faster and TALOS' mass
-/// matrix with the bias 12 %.
-pub(crate) fn alike_packs(_name: &str) -> Packs {
-    Packs::Alike(super::pack::MIN_ALIKE_LANES)
-}
+/// The packs of every dynamics function (its single-state body and its batch body's [`Plan`]
+/// alike): outputs of one shape, two lanes or more ([`super::pack::MIN_ALIKE_LANES`]). The
+/// mass matrix kept three lanes at least from the twenty-eighth session to the thirty-seventh
+/// (`docs/performance.md`), as with two it had run 2–9 % slower. Measured again once the
+/// copies' frames were aligned (`dispatch::aligns_frame`), two lanes made G1's mass matrix
+/// 3–14 % faster and TALOS' mass matrix with the bias 9–19 %.
+pub(crate) const ALIKE_PACKS: Packs = Packs::Alike(super::pack::MIN_ALIKE_LANES);
 
 /// What a batch body does as the single-state body's packs do, so that each state's results
 /// are the same bits as a single call's: a packed sum fuses the product its pack fuses (or

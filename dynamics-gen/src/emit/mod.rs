@@ -725,7 +725,7 @@ fn body_tokens(
         output,
         options,
         nalgebra,
-        function::alike_packs(name),
+        function::ALIKE_PACKS,
     )
 }
 
