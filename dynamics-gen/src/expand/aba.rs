@@ -33,8 +33,8 @@
 //! instead of seven (`U_i`, `D_i⁻¹`, `u_i`), and its chain from joint to joint is one
 //! multiplication shorter; the operation count is the same. Measured (old and new generated
 //! code in one binary, medians of 15 interleaved rounds, six processes): TALOS' forward
-//! dynamics −0.5 to −17 % (median −3.6 %), G1's −7.7 to +2.2 % (median −1.8 %; 1,191 → 1,161
-//! spill stores in its AVX-512 copy), Solo-12's −0.3 to −4.4 %.
+//! dynamics −1.4 to −5.8 %, Solo-12's −3.7 to +2.8 %, G1's −11.8 to +3.2 % (1,191 → 1,161
+//! spill stores in its AVX-512 copy).
 //!
 //! The shifts of the articulated inertias ([`ShiftForm`]) and the bias wrenches
 //! ([`LinkForce`]) can each be written out in equal forms; the caller picks the cheapest.
@@ -140,7 +140,14 @@ pub fn aba(
     let one = g.one();
     // Per joint, what pass 3 reads: `W = U D⁻¹` and `u D⁻¹` (see the module docs), or, for
     // a joint on a fixed base (which forms no `W`), `U`, `u` and `D⁻¹`.
-    let mut third: Vec<Pass3> = Vec::with_capacity(n);
+    let mut third = vec![
+        Pass3 {
+            coefficients: [zero; 6],
+            numerator: zero,
+            scale: None,
+        };
+        n
+    ];
     for i in (0..n).rev() {
         let s = axis(joints[i].frame.kind);
         let col: [ExprId; 6] = std::array::from_fn(|j| ia[i].entry(j, s));
@@ -149,21 +156,21 @@ pub fn aba(
         let parent = joints[i].frame.parent;
         if parent.is_none() && base_art.is_none() {
             // A fixed base takes no articulated inertia.
-            third.push(Pass3 {
+            third[i] = Pass3 {
                 coefficients: col,
                 numerator: u,
                 scale: Some(d_inv),
-            });
+            };
             continue;
         }
         // W = U D⁻¹ (W_s = 1 exactly, and unused: row and column s of I^a vanish).
         let w: [ExprId; 6] =
             std::array::from_fn(|j| if j == s { one } else { g.mul(col[j], d_inv) });
-        third.push(Pass3 {
+        third[i] = Pass3 {
             coefficients: w,
             numerator: g.mul(u, d_inv),
             scale: None,
-        });
+        };
         let ia_i = ia[i];
         let ia_small = SymInertia::from_upper(|j, k| {
             if j == s || k == s {
@@ -194,7 +201,6 @@ pub fn aba(
         *ia_p = SymInertia::add(g, ia_p, &moved);
         *pa_p = add(g, pa_p, &fp);
     }
-    third.reverse();
     // The base's acceleration: given (fixed base), or from I^A_0 a_0 = τ_0 − p^A_0.
     let (a0, base_qdd) = match &base_art {
         None => (base.vd, Vec::new()),
@@ -247,6 +253,7 @@ pub fn aba(
 }
 
 /// What pass 3 reads of a joint: `a_{i,s} = scale · (numerator − Σ_{j≠s} coefficients_j a'_{i,j})`.
+#[derive(Clone, Copy)]
 struct Pass3 {
     /// `W_i` (or `U_i` where `scale` is `D_i⁻¹`).
     coefficients: [ExprId; 6],
