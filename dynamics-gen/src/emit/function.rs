@@ -2120,6 +2120,32 @@ mod tests {
     }
 
     #[test]
+    fn the_bias_with_many_live_values_is_stored_the_inverse_dynamics_not() {
+        let solo = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/solo12.urdf"
+        );
+        let code = crate::Builder::new(solo)
+            .floating_base(true)
+            .no_runtime_trait()
+            .functions(["coriolis", "inverse_dynamics"])
+            .generate()
+            .expect("generates");
+        let body = body_of(&code, "coriolis");
+        assert!(body.contains("letmutm=::nalgebra::SVector::<f64,18>::zeros();"));
+        assert!(body.contains("m.data.0[0][17]=") && body.ends_with('m'));
+        let body = body_of(&code, "inverse_dynamics");
+        assert!(body.contains("from_array_storage") && !body.contains("letmutm="));
+        // The UR5's bias keeps few values live: a literal.
+        let code = crate::Builder::new("ur5")
+            .no_runtime_trait()
+            .functions(["coriolis"])
+            .generate()
+            .expect("generates");
+        assert!(!body_of(&code, "coriolis").contains("letmutm="));
+    }
+
+    #[test]
     fn a_mass_matrix_with_many_live_values_is_stored_entry_by_entry_from_the_last() {
         // Solo-12's literal on its floating base would keep 130 values live: stored.
         let solo = concat!(
