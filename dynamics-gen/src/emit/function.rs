@@ -2074,23 +2074,28 @@ mod tests {
         assert!(!code.contains("v4_"));
     }
 
-    #[test]
-    fn m_inverse_m_dot_and_the_pair_with_many_live_values_are_stored_too() {
+    /// Solo-12's code on its floating base, `functions` only, no runtime trait.
+    fn solo12_floating(functions: &[&str]) -> String {
         let solo = concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/../tests/data/robots/trees/solo12.urdf"
         );
-        let code = crate::Builder::new(solo)
+        crate::Builder::new(solo)
             .floating_base(true)
             .no_runtime_trait()
-            .functions([
-                "mass_matrix_inverse",
-                "mass_matrix_dot",
-                "mass_matrix_and_bias",
-                "gravity_derivative",
-            ])
+            .functions(functions.iter().copied())
             .generate()
-            .expect("generates");
+            .expect("generates")
+    }
+
+    #[test]
+    fn m_inverse_m_dot_and_the_pair_with_many_live_values_are_stored_too() {
+        let code = solo12_floating(&[
+            "mass_matrix_inverse",
+            "mass_matrix_dot",
+            "mass_matrix_and_bias",
+            "gravity_derivative",
+        ]);
         for name in ["mass_matrix_inverse", "mass_matrix_dot"] {
             let body = body_of(&code, name);
             assert!(
@@ -2121,16 +2126,7 @@ mod tests {
 
     #[test]
     fn the_bias_with_many_live_values_is_stored_the_inverse_dynamics_not() {
-        let solo = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../tests/data/robots/trees/solo12.urdf"
-        );
-        let code = crate::Builder::new(solo)
-            .floating_base(true)
-            .no_runtime_trait()
-            .functions(["coriolis", "inverse_dynamics"])
-            .generate()
-            .expect("generates");
+        let code = solo12_floating(&["coriolis", "inverse_dynamics"]);
         let body = body_of(&code, "coriolis");
         assert!(body.contains("letmutm=::nalgebra::SVector::<f64,18>::zeros();"));
         assert!(body.contains("m.data.0[0][17]=") && body.ends_with('m'));
