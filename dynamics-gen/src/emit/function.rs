@@ -209,7 +209,7 @@ struct Statement {
 /// the last statement reading each named node; `usize::MAX` for the outputs') renumbered to
 /// it; `first` are statements of `body` scheduled first, in that order (the stores of an
 /// [`Output::StoredMatrix`]), then `output_reads`, the named nodes the outputs read, in
-/// output order.
+/// output order; then each store moved up to where its value is ready ([`stores_early`]).
 fn reorder(
     body: Vec<Statement>,
     first: &[usize],
@@ -274,7 +274,8 @@ fn stores_early(
     for (p, &k) in order.iter().enumerate() {
         pos[k] = p;
     }
-    // Per position of the order: the stores that follow it (`None`: those with no reads).
+    // Per position of the order, the stores that follow it; `leading`, those that read
+    // nothing (a constant entry).
     let mut after: Vec<Vec<usize>> = vec![Vec::new(); order.len()];
     let mut leading = Vec::new();
     for &k in &order {
