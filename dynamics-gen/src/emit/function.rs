@@ -264,12 +264,7 @@ fn stores_early(
     for &k in stores {
         is_store[k] = true;
     }
-    let mut defined_by = vec![usize::MAX; nodes];
-    for (k, s) in body.iter().enumerate() {
-        for &(_, id) in &s.defined {
-            defined_by[id.index()] = k;
-        }
-    }
+    let defined_by = defined_by(body, nodes);
     let mut pos = vec![0; body.len()];
     for (p, &k) in order.iter().enumerate() {
         pos[k] = p;
@@ -304,6 +299,18 @@ fn stores_early(
     early
 }
 
+/// Per node of a graph of `nodes` nodes: the index of the statement of `body` that defines
+/// it (`usize::MAX` for none).
+fn defined_by(body: &[Statement], nodes: usize) -> Vec<usize> {
+    let mut defined_by = vec![usize::MAX; nodes];
+    for (k, s) in body.iter().enumerate() {
+        for &(_, id) in &s.defined {
+            defined_by[id.index()] = k;
+        }
+    }
+    defined_by
+}
+
 /// The order of [`reorder`] (statement indices into `body`) for a graph of `nodes` nodes.
 fn demand_schedule(
     body: &[Statement],
@@ -312,12 +319,7 @@ fn demand_schedule(
     nodes: usize,
 ) -> Vec<usize> {
     use super::schedule::{demand_order, Deps};
-    let mut defined_by = vec![usize::MAX; nodes];
-    for (k, s) in body.iter().enumerate() {
-        for &(_, id) in &s.defined {
-            defined_by[id.index()] = k;
-        }
-    }
+    let defined_by = defined_by(body, nodes);
     let statement = |id: &ExprId| Some(defined_by[id.index()]).filter(|&k| k != usize::MAX);
     let deps: Vec<Deps> = body
         .iter()

@@ -178,19 +178,19 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     let q_ty = quote!(#nalgebra::SVector<#scalar, #nq>);
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
     let mat_ty = quote!(#nalgebra::SMatrix<#scalar, #nv, #nv>);
-    let body = |name: &str, outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize| {
-        let shape = (nv_usize, cols);
-        body_tokens(
-            name,
-            &dynamics.graph,
-            args,
-            outputs,
-            shape,
-            Output::Matrix,
-            options,
-            &nalgebra,
-        )
-    };
+    let body =
+        |name: &str, outputs: &[crate::expr::ExprId], args: &[Arg], cols: usize, output: Output| {
+            body_tokens(
+                name,
+                &dynamics.graph,
+                args,
+                outputs,
+                (nv_usize, cols),
+                output,
+                options,
+                &nalgebra,
+            )
+        };
     let q = Arg {
         name: "q",
         group: Q,
@@ -211,44 +211,46 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         group: TAU,
         len: nv_usize,
     };
-    let mass_matrix = body_tokens(
+    let mass_matrix = body(
         "mass_matrix",
-        &dynamics.graph,
-        std::slice::from_ref(&q),
         &dynamics.mass_matrix,
-        (nv_usize, nv_usize),
+        std::slice::from_ref(&q),
+        nv_usize,
         Output::StoredMatrix,
-        options,
-        &nalgebra,
     );
     // The bias written entry by entry where its literal would keep many values live, as the
     // mass matrix is (see `Output::StoredMatrix`): measured (2026-12-04, old and new code in
-    // one binary, interleaved, several processes) G1 (floating base) −7 to −10 %, Solo-12 −7 %,
-    // TALOS −1 %. Not the inverse or forward dynamics: the same treatment made G1's and TALOS'
-    // inverse dynamics 3–5 % slower (the AVX-512 copy's spill stores 489 → 597 for G1, while
-    // its coriolis' fell 455 → 343) and moved the forward dynamics by −1 to +5 %.
-    let coriolis = body_tokens(
+    // one binary, interleaved, five processes) G1 (floating base) −6 to −15 %, TALOS −9 to
+    // +2 %, Solo-12 −8 to +10 %. Not the inverse or forward dynamics: the same treatment made
+    // G1's and TALOS' inverse dynamics 3–5 % slower (the AVX-512 copy's spill stores 489 → 597
+    // for G1, while its coriolis' fell 455 → 343) and moved the forward dynamics by −1 to +5 %.
+    let coriolis = body(
         "coriolis",
-        &dynamics.graph,
-        &[q.clone(), qd.clone()],
         &dynamics.coriolis,
-        (nv_usize, 1),
+        &[q.clone(), qd.clone()],
+        1,
         Output::StoredMatrix,
-        options,
-        &nalgebra,
     );
-    let gravity = body("gravity", &dynamics.gravity, std::slice::from_ref(&q), 1);
+    let gravity = body(
+        "gravity",
+        &dynamics.gravity,
+        std::slice::from_ref(&q),
+        1,
+        Output::Matrix,
+    );
     let inverse = body(
         "inverse_dynamics",
         &dynamics.inverse_dynamics,
         &[q.clone(), qd.clone(), qdd.clone()],
         1,
+        Output::Matrix,
     );
     let forward = body(
         "forward_dynamics",
         &dynamics.forward_dynamics,
         &[q.clone(), qd.clone(), tau.clone()],
         1,
+        Output::Matrix,
     );
     let kinetic = body_tokens(
         "kinetic_energy",
@@ -262,15 +264,12 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     );
     // `Ṁ` written entry by entry where its literal would keep many values live, as `M` is
     // (see `Output::StoredMatrix`): the trees −5 to −18 %, the 7-joint arms ±1 %.
-    let mass_matrix_dot = body_tokens(
+    let mass_matrix_dot = body(
         "mass_matrix_dot",
-        &dynamics.graph,
-        &[q.clone(), qd.clone()],
         &dynamics.mass_matrix_dot,
-        (nv_usize, nv_usize),
+        &[q.clone(), qd.clone()],
+        nv_usize,
         Output::StoredMatrix,
-        options,
-        &nalgebra,
     );
     let inverse = friction::add_friction(inverse, options);
     let forward = friction::subtract_friction(forward, options);
