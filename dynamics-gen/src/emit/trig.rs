@@ -19,17 +19,23 @@
 //!    the polynomials start while r_l is still being summed. Where the multiply-adds are
 //!    fused (`std` code compiled with FMA, and the dispatched AVX-512 and AVX2 copies), π/2 is
 //!    three full-precision pieces P₁ + P₂ + P₃ instead (π/2 to 3 × 53 bits for f64, 3 × 24
-//!    for f32), subtracted by three fused multiply-adds: x − k·P₁ is exact, and the two
-//!    others round once each, so r is one number within about an ulp of the exact reduced
-//!    argument, with no low part (3 operations per element where the pieces above take 20
-//!    for f64, 28 for f32, and no correction in step 3).
+//!    for f32): x − k·P₁ is exact, and h = (x − k·P₁) − k·P₂ rounds once, relative to the
+//!    reduced argument itself; the last term −k·P₃ (below 10⁻²⁷ for f64) is added to h only
+//!    where r is the leading term of sin r, so that the polynomials start one multiply-add
+//!    sooner (r within about an ulp of the exact reduced argument; 4 operations per element
+//!    where the pieces above take 20 for f64, 28 for f32, and no correction in step 3).
 //! 2. **Polynomials** on |r_h| ≤ π/4 (z = r_h²): for f64, minimax polynomials through r¹³
 //!    (sin) and r¹⁴ (cos) whose relative errors there are below 0.04 ulp (`SIN_F64`); for
-//!    f32, the Taylor series through r⁹ and r¹⁰ (below 0.05 ulp); cos as
-//!    w + ((1 − w) − z/2 + z² Q(z)) with w = 1 − z/2, which keeps the rounding error of w.
-//!    Evaluated by Estrin's scheme (pairs, then powers of z²), with fused multiply-adds where
-//!    the code has FMA: the sines and cosines head every function's longest dependency chain,
-//!    and Estrin halves their depth.
+//!    f32, the Taylor series through r⁹ and r¹⁰ (below 0.05 ulp); sin as r + r·z·P(z); cos,
+//!    fused, as 1 + z·T(z) with T = −1/2 + z·Q(z), otherwise as
+//!    w + ((1 − w) − z/2 + z² Q(z)) with w = 1 − z/2, which keeps the rounding error of w
+//!    where z·T and the sum would round apart. Evaluated by Estrin's scheme (pairs, then
+//!    joined by z² and z⁴), with fused multiply-adds where the code has FMA: the sines and
+//!    cosines head every function's longest dependency chain, and Estrin cuts their depth to
+//!    three multiply-adds after z and one more for the result. (Fused, the reduction's third
+//!    multiply-add off the path and cos no longer three operations after sin took 7 of the
+//!    kernel's 43 cycles of latency, by the instructions' latencies; measured, 2026-12-04,
+//!    in `docs/performance.md`.)
 //! 3. **Correction and quadrant**: where r has a low part, sin r ≈ S + r_l C and
 //!    cos r ≈ C − r_l S; then, by k mod 4,
 //!    (sin x, cos x) = (S, C), (C, −S), (−S, −C) or (−C, S), by selects and sign-bit flips.
@@ -119,12 +125,12 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 .collect(),
         ),
     };
-    // Estrin's scheme: the pairs c₂ᵢ + z·c₂ᵢ₊₁ side by side, then joined by powers of z²
-    // from the top, (c₀ + z c₁) + z²·((c₂ + z c₃) + z²·(c₄ + z c₅)): three dependent
-    // multiply-adds after z² for six coefficients, where Horner's scheme chains six. The
-    // sines and cosines head every function's longest chain of dependent operations.
+    // Estrin's scheme: the pairs c₂ᵢ + z·c₂ᵢ₊₁ side by side, then adjacent terms joined by
+    // z², then by z⁴: (c₀ + z c₁) + z²·(c₂ + z c₃) + z⁴·(c₄ + z c₅), three dependent
+    // multiply-adds after z for six or seven coefficients, where Horner's scheme chains six.
+    // The sines and cosines head every function's longest chain of dependent operations.
     let estrin = |c: &[f64]| {
-        let pairs: Vec<TokenStream> = c
+        let mut terms: Vec<TokenStream> = c
             .chunks(2)
             .map(|p| match *p {
                 [a, b] => {
@@ -135,13 +141,47 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 _ => unreachable!("chunks of two"),
             })
             .collect();
-        pairs
-            .into_iter()
-            .rev()
-            .reduce(|acc, p| quote!(fma(z2, #acc, #p)))
-            .expect("polynomials have coefficients")
+        for power in [quote!(z2), quote!(z4)] {
+            terms = terms
+                .chunks(2)
+                .map(|p| match p {
+                    [a, b] => quote!(fma(#power, #b, #a)),
+                    [a] => a.clone(),
+                    _ => unreachable!("chunks of two"),
+                })
+                .collect();
+        }
+        assert_eq!(terms.len(), 1, "at most eight coefficients");
+        terms.pop().expect("polynomials have coefficients")
     };
-    let (sin_poly, cos_poly) = (estrin(&sin_c), estrin(&cos_c));
+    // cos r = 1 − z/2 + z²·Q(z). Fused, as 1 + z·T(z) with T = −1/2 + z·Q(z): one
+    // multiply-add after T, rounded once. Unfused, z·T and the sum would round apart (2.0 ulp
+    // measured), so there it is w + ((1 − w) − z/2 + z²·Q(z)) with w = 1 − z/2, which keeps
+    // the rounding error of w (1.0 ulp), three operations later.
+    let cos_t: Vec<f64> = std::iter::once(-0.5).chain(cos_c.iter().copied()).collect();
+    let (sin_poly, cos_poly, cos_q) = (estrin(&sin_c), estrin(&cos_t), estrin(&cos_c));
+    let (hz_w, compensated) = (
+        quote! {
+            let hz = 0.5 * z;
+            let w = 1.0 - hz;
+        },
+        quote!(w + fma(z2, #cos_q, (1.0 - w) - hz)),
+    );
+    // z⁴ where a polynomial of more than four coefficients reads it.
+    let z4 = (sin_c.len() > 4 || cos_c.len() > 4 || (!no_std && cos_t.len() > 4))
+        .then(|| quote!(let z4 = z2 * z2;));
+    let cosine = if no_std {
+        quote!(#hz_w let c = #compensated;)
+    } else {
+        quote! {
+            let c = if fused {
+                fma(z, #cos_poly, 1.0)
+            } else {
+                #hz_w
+                #compensated
+            };
+        }
+    };
     // `a·b + c`: one rounding where the code is compiled with FMA (or in the AVX-512 and AVX2
     // copies of a dispatched function, `F`), two otherwise; `core` has no `mul_add`. `fused`
     // also picks the reduction and whether the correction of step 3 runs.
@@ -188,6 +228,12 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     // one binary, medians of 15 interleaved rounds, three runs): `sin_cos` of 7 angles
     // 18.4–20.3 → 15.8–16.3 ns; the UR5's, the Panda's and rand7's poses −9 to −15 %,
     // `J_s` −5 to −14 %, gravity 0 to −11 %.
+    //
+    // The last term, k·P₃, is below 10⁻²⁷ (f64; 2·10⁻¹¹ for f32) for every k of the range:
+    // it changes z = h² by at most 2·10⁻²⁷, far below z's own rounding, and matters only
+    // where r itself is added, the leading term of sin r. So the fused path returns
+    // h = (x − k·P₁) − k·P₂ and l = −k·P₃; the polynomials start from h (one multiply-add
+    // sooner) and sin adds r = h + l (rounded once, as the third multiply-add rounded it).
     let reduce = if no_std {
         unfused
     } else {
@@ -205,16 +251,23 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         }
         .map(lit);
         quote! {
-            // Fused, r has no low part: `l` is not read (step 3 is skipped).
+            // Fused: r = h + l with l = −k·P₃ (step 3 is skipped).
             let (h, l) = if fused {
                 let h = fma(-k, #q1, x);
                 let h = fma(-k, #q2, h);
-                (fma(-k, #q3, h), 0.0)
+                (h, -k * #q3)
             } else {
                 #unfused
                 (h, l)
             };
         }
+    };
+    // sin's leading term: r = h + l where l is k·P₃'s (fused), h where l is a low part that
+    // step 3 adds.
+    let (leading, r) = if no_std {
+        (quote!(), quote!(h))
+    } else {
+        (quote!(let r = if fused { h + l } else { h };), quote!(r))
     };
     // The first-order correction by the reduced argument's low part, where there is one.
     let correct = if no_std {
@@ -330,14 +383,15 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 let k = y - #round;
                 let n = y.to_bits();
                 #reduce
-                // x − k·π/2 = h + l. sin h = h + h·z·P(z), cos h = 1 − z/2 + z²·Q(z), z = h²,
-                // P and Q by Estrin, start as soon as h is known, beside the sum of l.
+                // x − k·π/2 = h + l. sin h = h + h·z·P(z), cos h = 1 + z·T(z) (or its
+                // compensated form), z = h², the polynomials by Estrin, start as soon as h is
+                // known, beside the sum of l.
                 let z = h * h;
                 let z2 = z * z;
-                let s = fma(h * z, #sin_poly, h);
-                let hz = 0.5 * z;
-                let w = 1.0 - hz;
-                let c = w + fma(z2, #cos_poly, (1.0 - w) - hz);
+                #z4
+                #leading
+                let s = fma(h * z, #sin_poly, #r);
+                #cosine
                 #correct
                 let (s, c) = if n & 1 == 0 { (s, c) } else { (c, s) };
                 *sin = #t::from_bits(s.to_bits() ^ ((n & 2) << #sign_shift));
