@@ -129,6 +129,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
     // z², then by z⁴: (c₀ + z c₁) + z²·(c₂ + z c₃) + z⁴·(c₄ + z c₅), three dependent
     // multiply-adds after z for six or seven coefficients, where Horner's scheme chains six.
     // The sines and cosines head every function's longest chain of dependent operations.
+    // Also returns whether the polynomial reads z⁴ (more than two pairs).
     let estrin = |c: &[f64]| {
         let mut terms: Vec<TokenStream> = c
             .chunks(2)
@@ -141,6 +142,7 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 _ => unreachable!("chunks of two"),
             })
             .collect();
+        let reads_z4 = terms.len() > 2;
         for power in [quote!(z2), quote!(z4)] {
             terms = terms
                 .chunks(2)
@@ -151,15 +153,16 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
                 })
                 .collect();
         }
-        assert_eq!(terms.len(), 1, "at most eight coefficients");
-        terms.pop().expect("polynomials have coefficients")
+        assert_eq!(terms.len(), 1, "one to eight coefficients");
+        (terms.pop().expect("one term"), reads_z4)
     };
     // cos r = 1 − z/2 + z²·Q(z). Fused, as 1 + z·T(z) with T = −1/2 + z·Q(z): one
     // multiply-add after T, rounded once. Unfused, z·T and the sum would round apart (2.0 ulp
     // measured), so there it is w + ((1 − w) − z/2 + z²·Q(z)) with w = 1 − z/2, which keeps
     // the rounding error of w (1.0 ulp), three operations later.
     let cos_t: Vec<f64> = std::iter::once(-0.5).chain(cos_c.iter().copied()).collect();
-    let (sin_poly, cos_poly, cos_q) = (estrin(&sin_c), estrin(&cos_t), estrin(&cos_c));
+    let ((sin_poly, sin_z4), (cos_poly, cos_z4), (cos_q, cos_q_z4)) =
+        (estrin(&sin_c), estrin(&cos_t), estrin(&cos_c));
     let (hz_w, compensated) = (
         quote! {
             let hz = 0.5 * z;
@@ -167,9 +170,8 @@ pub fn sin_cos_helper(scalar: Scalar, no_std: bool) -> TokenStream {
         },
         quote!(w + fma(z2, #cos_q, (1.0 - w) - hz)),
     );
-    // z⁴ where a polynomial of more than four coefficients reads it.
-    let z4 = (sin_c.len() > 4 || cos_c.len() > 4 || (!no_std && cos_t.len() > 4))
-        .then(|| quote!(let z4 = z2 * z2;));
+    // z⁴ where an emitted polynomial reads it (`cos_poly` only in `std` code).
+    let z4 = (sin_z4 || cos_q_z4 || (!no_std && cos_z4)).then(|| quote!(let z4 = z2 * z2;));
     let cosine = if no_std {
         quote!(#hz_w let c = #compensated;)
     } else {
