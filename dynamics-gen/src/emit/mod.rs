@@ -743,7 +743,8 @@ fn body_tokens(
     )
 }
 
-/// [`body_tokens`] with the packs `pack` ([`Packs::Rows`]: the kinematics' poses).
+/// [`body_tokens`] with the packs `pack` ([`Packs::Rows`]: the kinematics' poses;
+/// [`Packs::Columns`]: its Jacobians).
 fn body_tokens_with(
     name: &str,
     graph: &crate::expr::ExprGraph,
@@ -1347,6 +1348,12 @@ fn kinematics_functions(
     let body =
         |name: &str, outputs: &[crate::expr::ExprId], rows: usize, cols: usize, output: Output| {
             let q = std::slice::from_ref(q);
+            // The Jacobians (6 rows) by their columns' rows, the poses by theirs.
+            let pack = if rows == 6 {
+                Packs::Columns
+            } else {
+                Packs::Rows
+            };
             body_tokens_with(
                 name,
                 &k.graph,
@@ -1356,7 +1363,7 @@ fn kinematics_functions(
                 output,
                 options,
                 nalgebra,
-                Packs::Rows,
+                pack,
             )
         };
     let ee = &k.end_effector;
