@@ -129,9 +129,9 @@ pub enum Packs {
     Rows,
     /// The rows of a Jacobian's columns (`6 × n`, [`Output::Matrix`] or
     /// [`Output::Matrices`]): each column's `ω` and its `v`, three entries each, which turn
-    /// by the same sines and cosines as a pose's rows do (rand7's `J_s` 15–23 % faster, its
-    /// `J_b` 7–10 %, measured in `docs/performance.md`, forty-first session; their time
-    /// derivatives gained nothing and keep scalars).
+    /// by the same sines and cosines as a pose's rows do (rand7's `J_s` 12–16 % faster, its
+    /// `J_b` 8–14 %: `docs/performance.md`, forty-first session). The time derivatives are
+    /// left scalar: given these seeds, none of rand7's or the Panda's was kept.
     Columns,
     /// Outputs of one shape ([`super::pack::alike_seeds`]), at least this many to a seed: the
     /// same joint of a tree's alike limbs (the dynamics; see [`ALIKE_PACKS`]).
@@ -981,47 +981,45 @@ impl FunctionBody<'_> {
     /// rotation, and its translation; the rows of each column of a Jacobian's `ω` and `v`;
     /// or the outputs of one shape.
     fn pack_seeds(&self, live: &[bool]) -> Vec<[Option<ExprId>; super::pack::LANES]> {
-        let items = match (self.pack, self.output) {
+        // Each rotation column's rows of a pose, and its translation.
+        let pose = || {
+            let columns = (0..3).map(|c| [c, 3 + c, 6 + c]);
+            columns.chain([[9, 10, 11]]).collect()
+        };
+        // Each column's `ω` (rows 0–2) and `v` (rows 3–5) of a row-major 6 × cols Jacobian.
+        let cols = self.cols;
+        let jacobian = || {
+            let rows = |c: usize, r: usize| [r, r + 1, r + 2].map(|r| r * cols + c);
+            (0..cols).flat_map(|c| [rows(c, 0), rows(c, 3)]).collect()
+        };
+        // The outputs of one item, how many items, and the seeds of each (three outputs by
+        // their indices in the item).
+        let (len, items, indices): (usize, usize, Vec<[usize; 3]>) = match (self.pack, self.output)
+        {
             (Packs::None, _) => return Vec::new(),
             (Packs::Alike(min), _) => {
                 return super::pack::alike_seeds(self.graph, live, self.outputs, min)
             }
-            (Packs::Rows, Output::Pose) => 1,
-            (Packs::Rows, Output::Poses(count)) => count,
-            (Packs::Rows, _) => return Vec::new(),
-            (Packs::Columns, Output::Matrix) if self.rows == 6 => 1,
-            (Packs::Columns, Output::Matrices(count)) if self.rows == 6 => count,
-            (Packs::Columns, _) => return Vec::new(),
+            (Packs::Rows, Output::Pose) => (12, 1, pose()),
+            (Packs::Rows, Output::Poses(count)) => (12, count, pose()),
+            (Packs::Columns, Output::Matrix) if self.rows == 6 => (6 * cols, 1, jacobian()),
+            (Packs::Columns, Output::Matrices(count)) if self.rows == 6 => {
+                (6 * cols, count, jacobian())
+            }
+            (Packs::Rows | Packs::Columns, _) => return Vec::new(),
         };
-        if self.pack == Packs::Columns {
-            // Row-major 6 × cols matrices, one after the other: the rows (0, 1, 2) and
-            // (3, 4, 5) of every column.
-            let cols = self.cols;
-            let mut seeds = Vec::new();
-            for item in 0..items {
-                let out = &self.outputs[item * 6 * cols..];
-                for c in 0..cols {
-                    for r in [0, 3] {
-                        seeds.push([
-                            Some(out[r * cols + c]),
-                            Some(out[(r + 1) * cols + c]),
-                            Some(out[(r + 2) * cols + c]),
-                            None,
-                        ]);
-                    }
-                }
-            }
-            return seeds;
+        if len == 0 {
+            return Vec::new();
         }
-        let mut seeds = Vec::new();
-        for item in 0..items {
-            let out = &self.outputs[item * 12..];
-            for c in 0..3 {
-                seeds.push([Some(out[c]), Some(out[3 + c]), Some(out[6 + c]), None]);
-            }
-            seeds.push([Some(out[9]), Some(out[10]), Some(out[11]), None]);
-        }
-        seeds
+        self.outputs
+            .chunks_exact(len)
+            .take(items)
+            .flat_map(|out| {
+                indices
+                    .iter()
+                    .map(|k| [Some(out[k[0]]), Some(out[k[1]]), Some(out[k[2]]), None])
+            })
+            .collect()
     }
 
     /// The packs of this body, when [`Self::pack`] asks for them and any is found.
