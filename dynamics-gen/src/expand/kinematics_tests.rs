@@ -266,3 +266,90 @@ fn equations_of_whole_and_fractional_mimic_multipliers() {
     assert!(err.contains("multiplier such as 0.5"), "{err}");
     assert!(err.contains("whole numbers up to 8"), "{err}");
 }
+
+/// The Jacobian's point on a joint's axis: the Panda's third joint sits 0.316 m along its own
+/// axis from the second joint's origin, which is on the base's z axis at `(0, 0, 0.333)`; its
+/// column's `v = (0, 0, 0.333) × ω` then has an exact zero for `v_z` (from the joint's own
+/// origin it would be a sum of products that cancel only numerically).
+#[test]
+fn the_jacobian_takes_a_cheaper_point_of_the_axis() {
+    let panda = dynamics_model::urdf::from_str(
+        include_str!("../../../tests/data/robots/panda.urdf"),
+        "panda.urdf",
+        &LoadOptions::default(),
+    )
+    .expect("panda");
+    let k = expand_kinematics(&panda);
+    let nv = panda.dof();
+    let j_s = &k.end_effector.jacobian_space;
+    assert!(k.graph.is_zero(j_s[5 * nv + 2]), "v_z of the third column");
+    assert!(!k.graph.is_zero(j_s[3 * nv + 2]), "v_x of the third column");
+}
+
+/// Twisted joints (the axes neither parallel nor at right angles: `a x_λ + d z` from the foot
+/// of the common normal instead of three columns of `R_λ`), offsets along and across the axes,
+/// a prismatic joint among them: the pose, both Jacobians and the potential energy equal the
+/// reference's.
+#[test]
+fn twisted_joints_equal_the_reference() {
+    let robot = arm(&[
+        ("j1", "revolute", YAW, "0 0 1", ""),
+        (
+            "j2",
+            "revolute",
+            r#"xyz="0.05 0.1 0.2" rpy="0.4 0 0""#,
+            "0 0 1",
+            "",
+        ),
+        (
+            "j3",
+            "revolute",
+            r#"xyz="0.3 -0.07 0.11" rpy="-0.9 0.3 0.2""#,
+            "0 0 1",
+            "",
+        ),
+        (
+            "j4",
+            "prismatic",
+            r#"xyz="0.1 0.02 0.05" rpy="0.7 0 0""#,
+            "0 0 1",
+            "",
+        ),
+        (
+            "j5",
+            "revolute",
+            r#"xyz="0 0.15 0.25" rpy="1.2 0 0""#,
+            "0 0 1",
+            "",
+        ),
+        (
+            "j6",
+            "revolute",
+            r#"xyz="0.12 0 0" rpy="0 0.6 0""#,
+            "0 1 0",
+            "",
+        ),
+    ]);
+    let k = expand_kinematics(&robot);
+    let ee = &k.end_effector;
+    let mut rng = Rng::new(0x7_157);
+    for _ in 0..20 {
+        let q: Vec<f64> = (0..robot.n_coordinates())
+            .map(|_| rng.uniform(-3.0, 3.0))
+            .collect();
+        let eval = |roots: &[ExprId]| k.graph.eval(roots, &|x: Input| q[x.index as usize]);
+        let t = dynamics_reference::end_effector_pose(&robot, &q);
+        let pose: Vec<f64> = (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .chain((0..3).map(|i| (i, 3)))
+            .map(|(i, j)| t[(i, j)])
+            .collect();
+        close("pose", &eval(&ee.pose), &pose);
+        let j_s = dynamics_reference::jacobian_space(&robot, &q);
+        close("J_s", &eval(&ee.jacobian_space), &row_major(&j_s));
+        let j_b = dynamics_reference::jacobian_body(&robot, &q);
+        close("J_b", &eval(&ee.jacobian_body), &row_major(&j_b));
+        let p = dynamics_reference::potential_energy(&robot, &q, &robot.gravity);
+        close("P", &eval(&[k.potential_energy]), &[p]);
+    }
+}
