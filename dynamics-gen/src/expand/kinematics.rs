@@ -22,7 +22,9 @@
 //! body  (in {f}):  J_b,j = (z_j, p_j × z_j)      revolute;   (0, z_j)    prismatic
 //! ```
 //!
-//! with `z⁰`, `p⁰` in {0} (`z⁰ = R_b z`, `p⁰ = p_b + R_b p` from the base-frame pose), and for
+//! with `z⁰`, `p⁰` in {0} (`z⁰ = R_b z`, `p⁰ = p_b + R_b p` from the base-frame pose; any point
+//! of the axis serves as `p`, and the space Jacobian takes a cheaper one than the origin where
+//! there is one, the foot of the common normal: [`joint_poses`]), and for
 //! the body Jacobian `z`, `p` the axis and origin in the frame {f} itself, i.e. the last
 //! column and the translation of `X_j = T_{f,J_j}`, computed from the frame inwards:
 //! `X = K_f⁻¹`, then `X ← X · Rot_z(−θ_j) · C_j` past each joint of the path. So `J_b,j`
