@@ -93,8 +93,9 @@ pub struct Kinematics {
 struct Pose {
     r: M3,
     p: V3,
-    /// A point of the z axis: `p`, or where it costs fewer operations, the foot of the
-    /// perpendicular from the parent joint frame's origin ([`joint_poses`]).
+    /// A point of the z axis for a Jacobian's `v = point × z`: `p`, or where one costs fewer
+    /// operations, the foot of the perpendicular from the parent joint frame's origin or that
+    /// origin itself where it lies on the axis ([`joint_poses`]).
     on_z: V3,
 }
 
