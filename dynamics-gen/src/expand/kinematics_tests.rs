@@ -134,6 +134,32 @@ fn row_major(m: &nalgebra::DMatrix<f64>) -> Vec<f64> {
         .collect()
 }
 
+/// The end effector's pose, `J_s`, `J_b` and the potential energy of `k` (expanded from
+/// `robot`) equal the reference's at 20 random configurations drawn from `seed`.
+fn equal_the_reference(robot: &Robot, k: &super::kinematics::Kinematics, seed: u64) {
+    let ee = &k.end_effector;
+    let mut rng = Rng::new(seed);
+    for _ in 0..20 {
+        let q: Vec<f64> = (0..robot.n_coordinates())
+            .map(|_| rng.uniform(-3.0, 3.0))
+            .collect();
+        let eval = |roots: &[ExprId]| k.graph.eval(roots, &|x: Input| q[x.index as usize]);
+        let t = dynamics_reference::end_effector_pose(robot, &q);
+        let pose: Vec<f64> = (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .chain((0..3).map(|i| (i, 3)))
+            .map(|(i, j)| t[(i, j)])
+            .collect();
+        close("pose", &eval(&ee.pose), &pose);
+        let j_s = dynamics_reference::jacobian_space(robot, &q);
+        close("J_s", &eval(&ee.jacobian_space), &row_major(&j_s));
+        let j_b = dynamics_reference::jacobian_body(robot, &q);
+        close("J_b", &eval(&ee.jacobian_body), &row_major(&j_b));
+        let p = dynamics_reference::potential_energy(robot, &q, &robot.gravity);
+        close("P", &eval(&[k.potential_energy]), &[p]);
+    }
+}
+
 #[test]
 fn runs_of_parallel_joints_take_the_sums_and_equal_the_reference() {
     let robot = runs_arm();
@@ -146,26 +172,7 @@ fn runs_of_parallel_joints_take_the_sums_and_equal_the_reference() {
     ] {
         assert!(has_sum_angle(&k.graph, roots), "{what} takes no run's sum");
     }
-    let mut rng = Rng::new(0x5_a17);
-    for _ in 0..20 {
-        let q: Vec<f64> = (0..robot.n_coordinates())
-            .map(|_| rng.uniform(-3.0, 3.0))
-            .collect();
-        let eval = |roots: &[ExprId]| k.graph.eval(roots, &|x: Input| q[x.index as usize]);
-        let t = dynamics_reference::end_effector_pose(&robot, &q);
-        let pose: Vec<f64> = (0..3)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .chain((0..3).map(|i| (i, 3)))
-            .map(|(i, j)| t[(i, j)])
-            .collect();
-        close("pose", &eval(&ee.pose), &pose);
-        let j_s = dynamics_reference::jacobian_space(&robot, &q);
-        close("J_s", &eval(&ee.jacobian_space), &row_major(&j_s));
-        let j_b = dynamics_reference::jacobian_body(&robot, &q);
-        close("J_b", &eval(&ee.jacobian_body), &row_major(&j_b));
-        let p = dynamics_reference::potential_energy(&robot, &q, &robot.gravity);
-        close("P", &eval(&[k.potential_energy]), &[p]);
-    }
+    equal_the_reference(&robot, &k, 0x5_a17);
 }
 
 /// The UR5's shoulder, elbow and first wrist joint are a run (its pose takes their sums); the
@@ -331,25 +338,5 @@ fn twisted_joints_equal_the_reference() {
         ),
     ]);
     let k = expand_kinematics(&robot);
-    let ee = &k.end_effector;
-    let mut rng = Rng::new(0x7_157);
-    for _ in 0..20 {
-        let q: Vec<f64> = (0..robot.n_coordinates())
-            .map(|_| rng.uniform(-3.0, 3.0))
-            .collect();
-        let eval = |roots: &[ExprId]| k.graph.eval(roots, &|x: Input| q[x.index as usize]);
-        let t = dynamics_reference::end_effector_pose(&robot, &q);
-        let pose: Vec<f64> = (0..3)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .chain((0..3).map(|i| (i, 3)))
-            .map(|(i, j)| t[(i, j)])
-            .collect();
-        close("pose", &eval(&ee.pose), &pose);
-        let j_s = dynamics_reference::jacobian_space(&robot, &q);
-        close("J_s", &eval(&ee.jacobian_space), &row_major(&j_s));
-        let j_b = dynamics_reference::jacobian_body(&robot, &q);
-        close("J_b", &eval(&ee.jacobian_body), &row_major(&j_b));
-        let p = dynamics_reference::potential_energy(&robot, &q, &robot.gravity);
-        close("P", &eval(&[k.potential_energy]), &[p]);
-    }
+    equal_the_reference(&robot, &k, 0x7_157);
 }
