@@ -176,14 +176,13 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ops: counted(&d.graph, &both),
         lines: function_lines(code, "mass_matrix_and_bias"),
     });
-    // The unrolled part of constrained forward dynamics: the factor of M, `L⁻ᵀ (τ − h)` and
-    // the unconstrained accelerations (the K-sized part runs in loops and depends on the
+    // The unrolled part of constrained forward dynamics: the factor of M and the
+    // unconstrained accelerations (the K-sized part runs in loops and depends on the
     // caller's K).
     let factor: Vec<ExprId> = d
         .mass_matrix_factor
         .iter()
         .chain(&d.mass_matrix_inv_d)
-        .chain(&d.unconstrained_half)
         .chain(&d.unconstrained)
         .copied()
         .collect();

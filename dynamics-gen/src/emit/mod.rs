@@ -783,12 +783,13 @@ fn body_tokens_with(
     .tokens()
 }
 
-/// Input group of the private triangular solves' packed factor `L`.
+/// Input groups of the private `solve_factored` helper: the packed factor `L` and `1/D`.
 const FACTOR_L: u8 = 5;
+const FACTOR_INV_D: u8 = 6;
 
 /// `coriolis_matrix`, `mass_matrix_and_bias`, the tip-wrench functions, the task-space
 /// functions, and `constrained_forward_dynamics` with its private helpers
-/// (`mass_matrix_factor`, `solve_lower_transposed`, `solve_lower`, `solve_constraint`).
+/// (`mass_matrix_factor`, `solve_factored`, `solve_constraint`).
 fn dynamics_extras(
     d: &Dynamics,
     t: &TaskSpace,
@@ -931,7 +932,6 @@ fn dynamics_extras(
         .iter()
         .map(|&(i, j)| d.mass_matrix_factor[i * nv_usize + j])
         .chain(d.mass_matrix_inv_d.iter().copied())
-        .chain(d.unconstrained_half.iter().copied())
         .chain(d.unconstrained.iter().copied())
         .collect();
     let factor = emit(
@@ -941,49 +941,45 @@ fn dynamics_extras(
         &factor_outputs,
         (0, 0),
         Output::Tuple {
-            shapes: [(nl_usize, 1), (nv_usize, 1), (nv_usize, 1), (nv_usize, 1)],
-            count: 4,
+            shapes: [(nl_usize, 1), (nv_usize, 1), (nv_usize, 1), (0, 0)],
+            count: 3,
             stored_first: false,
         },
     );
-    // The two triangular solves with the packed `L` that the `K`-sized part calls.
     let mut sg = crate::expr::ExprGraph::new();
     let zero = sg.zero();
     let mut h = vec![zero; nv_usize * nv_usize];
     for (p, &(i, j)) in packed.iter().enumerate() {
         h[i * nv_usize + j] = sg.input(expand::input(FACTOR_L, p));
     }
+    let inv_d: Vec<_> = (0..nv_usize)
+        .map(|i| sg.input(expand::input(FACTOR_INV_D, i)))
+        .collect();
     let b: Vec<_> = (0..nv_usize)
         .map(|i| sg.input(expand::input(TAU, i)))
         .collect();
-    let ones = vec![sg.one(); nv_usize];
-    let lt = crate::expand::ldlt::lt_solve(&mut sg, &h, &b);
-    let l = crate::expand::ldlt::l_solve_scaled(&mut sg, &h, &ones, &b);
-    let solve_args = [
-        Arg {
-            name: "l",
-            group: FACTOR_L,
-            len: nl_usize,
-        },
-        Arg {
-            name: "b",
-            group: TAU,
-            len: nv_usize,
-        },
-    ];
-    let solve_lt = emit(
-        "solve_lower_transposed",
+    let x = crate::expand::ldlt::ltdl_apply(&mut sg, &h, &inv_d, &b);
+    let solve = emit(
+        "solve_factored",
         &sg,
-        &solve_args,
-        &lt,
-        (nv_usize, 1),
-        Output::Matrix,
-    );
-    let solve_l = emit(
-        "solve_lower",
-        &sg,
-        &solve_args,
-        &l,
+        &[
+            Arg {
+                name: "l",
+                group: FACTOR_L,
+                len: nl_usize,
+            },
+            Arg {
+                name: "inv_d",
+                group: FACTOR_INV_D,
+                len: nv_usize,
+            },
+            Arg {
+                name: "b",
+                group: TAU,
+                len: nv_usize,
+            },
+        ],
+        &x,
         (nv_usize, 1),
         Output::Matrix,
     );
@@ -1083,10 +1079,10 @@ fn dynamics_extras(
         /// Robotics §8.7, Exercise 8.10): `(q̈, λ)` with `M q̈ + h = τ + Aᵀ λ` and
         /// `A q̈ + Ȧ q̇ = 0`, where `a` is `A(q)` and `a_dot_qd` is `Ȧ q̇`; `λ` are the
         /// constraint forces' multipliers (`Aᵀ λ` the joint forces the constraints apply).
-        /// By the Schur complement with the unrolled `M = Lᵀ D L`: `q̈₀ = M⁻¹(τ − h)` and
-        /// `y = L⁻ᵀ(τ − h)` with the factor, `W = L⁻ᵀ Aᵀ`, `(Wᵀ D⁻¹ W) λ = −(Wᵀ D⁻¹ y + Ȧ q̇)`
-        /// (that is `(A M⁻¹ Aᵀ) λ = −(A q̈₀ + Ȧ q̇)`), `q̈ = q̈₀ + L⁻¹ D⁻¹ W λ`. `K` is the
-        /// caller's, so the `K`-sized part runs in loops (no allocation).
+        /// By the Schur complement: `q̈₀ = M⁻¹(τ − h)`, `Y = M⁻¹ Aᵀ` (the unrolled
+        /// `M = Lᵀ D L`, `q̈₀` in the factor's body), `(A Y) λ = −(A q̈₀ + Ȧ q̇)`,
+        /// `q̈ = q̈₀ + Y λ`. `K` is the caller's, so the `K`-sized part runs in loops (no
+        /// allocation).
         #[doc = ""]
         #[doc = #tol_doc]
         #[inline]
@@ -1100,54 +1096,34 @@ fn dynamics_extras(
             a_dot_qd: &#nalgebra::SVector<#scalar, K>,
         ) -> Option<(#vec_ty, #nalgebra::SVector<#scalar, K>)> {
             #constrained_friction
-            let (l, inv_d, y, free) = self.mass_matrix_factor(q, qd, tau);
-            // W = L⁻ᵀ Aᵀ and D⁻¹ W, column by column.
-            let mut w = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();
-            let mut inv_d_w = w;
-            for ((mut w_k, mut inv_d_w_k), a_k) in w
-                .column_iter_mut()
-                .zip(inv_d_w.column_iter_mut())
-                .zip(a.row_iter())
-            {
-                let column = Self::solve_lower_transposed(&l, &a_k.transpose());
-                inv_d_w_k.copy_from(&column.component_mul(&inv_d));
-                w_k.copy_from(&column);
+            let (l, inv_d, free) = self.mass_matrix_factor(q, qd, tau);
+            let mut y = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();
+            for (mut column, row) in y.column_iter_mut().zip(a.row_iter()) {
+                column.copy_from(&Self::solve_factored(&l, &inv_d, &row.transpose()));
             }
-            // A M⁻¹ Aᵀ = Wᵀ D⁻¹ W; A q̈₀ = Wᵀ D⁻¹ y.
-            let s = w.transpose() * inv_d_w;
-            let r = -(inv_d_w.transpose() * y + a_dot_qd);
-            // M⁻¹ Aᵀ = L⁻¹ D⁻¹ W, beside the small solve.
-            let mut m_inv_at = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();
-            for (mut column, inv_d_w_k) in m_inv_at.column_iter_mut().zip(inv_d_w.column_iter()) {
-                column.copy_from(&Self::solve_lower(&l, &inv_d_w_k.into_owned()));
-            }
+            let s = a * y;
+            let r = -(a * free + a_dot_qd);
             let lambda = Self::solve_constraint(s, r)?;
-            Some((free + m_inv_at * lambda, lambda))
+            Some((free + y * lambda, lambda))
         }
 
-        /// `(L, 1/D, y, q̈₀)`: the factorisation `M = Lᵀ D L` (the entries of the unit lower
-        /// triangular `L` that are not structural zeros, row by row), `y = L⁻ᵀ (τ − h)` and
-        /// the unconstrained accelerations `q̈₀ = M⁻¹ (τ − h) = L⁻¹ D⁻¹ y` (`h = c + g`).
+        /// `(L, 1/D, q̈₀)`: the factorisation `M = Lᵀ D L` (the entries of the unit lower
+        /// triangular `L` that are not structural zeros, row by row) and the unconstrained
+        /// accelerations `q̈₀ = M⁻¹ (τ − h)` (`h = c + g`) by it, in the same body.
         #[inline]
         fn mass_matrix_factor(
             &self,
             q: &#q_ty,
             qd: &#vec_ty,
             tau: &#vec_ty,
-        ) -> (#l_ty, #vec_ty, #vec_ty, #vec_ty) {
+        ) -> (#l_ty, #vec_ty, #vec_ty) {
             #factor
         }
 
-        /// `L⁻ᵀ b`: `Lᵀ x = b` from the last row up, `L` packed as in `mass_matrix_factor`.
+        /// `M⁻¹ b` from the factors of `mass_matrix_factor`: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
         #[inline]
-        fn solve_lower_transposed(l: &#l_ty, b: &#vec_ty) -> #vec_ty {
-            #solve_lt
-        }
-
-        /// `L⁻¹ b`: `L x = b` from the first row down, `L` packed as in `mass_matrix_factor`.
-        #[inline]
-        fn solve_lower(l: &#l_ty, b: &#vec_ty) -> #vec_ty {
-            #solve_l
+        fn solve_factored(l: &#l_ty, inv_d: &#vec_ty, b: &#vec_ty) -> #vec_ty {
+            #solve
         }
 
         /// `S⁻¹ r` for the symmetric `S` by `S = L D Lᵀ` (in place, no pivoting); `None` when
@@ -1335,8 +1311,7 @@ const HELPERS: &[(&str, &[&str])] = &[
     ("friction_rate", DERIVATIVE_FUNCTIONS),
     ("isometry", &["end_effector_pose", "frame_poses"]),
     ("mass_matrix_factor", &["constrained_forward_dynamics"]),
-    ("solve_lower_transposed", &["constrained_forward_dynamics"]),
-    ("solve_lower", &["constrained_forward_dynamics"]),
+    ("solve_factored", &["constrained_forward_dynamics"]),
     ("solve_constraint", &["constrained_forward_dynamics"]),
 ];
 

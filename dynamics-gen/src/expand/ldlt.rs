@@ -121,17 +121,10 @@ pub fn ltdl_factor(g: &mut ExprGraph, m: &[ExprId]) -> (Vec<ExprId>, Vec<ExprId>
     (h, inv_d)
 }
 
-/// `x = M⁻¹ b` from the factors of [`ltdl_factor`]: `Lᵀ y = b` ([`lt_solve`]), then
-/// `z = D⁻¹ y`, `L x = z` ([`l_solve_scaled`]).
+/// `x = M⁻¹ b` from the factors of [`ltdl_factor`]: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
 pub fn ltdl_apply(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
-    let y = lt_solve(g, h, b);
-    l_solve_scaled(g, h, inv_d, &y)
-}
-
-/// `y = L⁻ᵀ b`: `Lᵀ y = b` from the last row up, `L` from [`ltdl_factor`] (n×n row-major,
-/// its strictly lower triangle read).
-pub fn lt_solve(g: &mut ExprGraph, h: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
     let n = b.len();
+    // Lᵀ y = b, from the last row up.
     let mut y = b.to_vec();
     for k in (0..n).rev() {
         for i in 0..k {
@@ -139,18 +132,7 @@ pub fn lt_solve(g: &mut ExprGraph, h: &[ExprId], b: &[ExprId]) -> Vec<ExprId> {
             y[i] = g.sub(y[i], t);
         }
     }
-    y
-}
-
-/// `x = L⁻¹ D⁻¹ y`: `z = D⁻¹ y`, then `L x = z` from the first row down (the second half of
-/// [`ltdl_apply`]).
-pub fn l_solve_scaled(
-    g: &mut ExprGraph,
-    h: &[ExprId],
-    inv_d: &[ExprId],
-    y: &[ExprId],
-) -> Vec<ExprId> {
-    let n = y.len();
+    // z = D⁻¹ y, then L x = z from the first row down.
     let mut x: Vec<ExprId> = (0..n).map(|i| g.mul(y[i], inv_d[i])).collect();
     for i in 0..n {
         for j in 0..i {
@@ -178,26 +160,6 @@ pub fn ltdl_inverse_by_columns(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId]
     inv
 }
 
-/// `U = L⁻¹` (n×n row-major, unit lower triangular) for `L` from [`ltdl_factor`]:
-/// `U_ij = −Σ_{j≤k<i} L_ik U_kj` (i > j), with `L`'s pattern on a tree.
-pub fn unit_lower_inverse(g: &mut ExprGraph, h: &[ExprId]) -> Vec<ExprId> {
-    let n = h.len().isqrt();
-    let zero = g.zero();
-    let one = g.one();
-    // Column by column from the diagonal down. (Row by row, from `U L = 1`, has the same
-    // count; measured no faster, and 6–7 % slower on the UR5.)
-    let mut u = vec![zero; n * n];
-    for j in 0..n {
-        u[j * n + j] = one;
-        for i in j + 1..n {
-            let terms: Vec<ExprId> = (j..i).map(|k| g.mul(h[i * n + k], u[k * n + j])).collect();
-            let s = g.sum(&terms);
-            u[i * n + j] = g.neg(s);
-        }
-    }
-    u
-}
-
 /// `M⁻¹ = L⁻¹ D⁻¹ L⁻ᵀ` (n×n row-major, symmetric) from the factors of [`ltdl_factor`]:
 ///
 /// ```text
@@ -211,7 +173,18 @@ pub fn unit_lower_inverse(g: &mut ExprGraph, h: &[ExprId]) -> Vec<ExprId> {
 pub fn ltdl_inverse(g: &mut ExprGraph, h: &[ExprId], inv_d: &[ExprId]) -> Vec<ExprId> {
     let n = inv_d.len();
     let zero = g.zero();
-    let u = unit_lower_inverse(g, h);
+    let one = g.one();
+    // U = L⁻¹, column by column from the diagonal down. (Row by row, from `U L = 1`, has
+    // the same count; measured no faster, and 6–7 % slower on the UR5.)
+    let mut u = vec![zero; n * n];
+    for j in 0..n {
+        u[j * n + j] = one;
+        for i in j + 1..n {
+            let terms: Vec<ExprId> = (j..i).map(|k| g.mul(h[i * n + k], u[k * n + j])).collect();
+            let s = g.sum(&terms);
+            u[i * n + j] = g.neg(s);
+        }
+    }
     // W_jk = U_jk / D_k.
     let w: Vec<ExprId> = (0..n * n)
         .map(|x| {

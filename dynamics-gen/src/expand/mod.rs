@@ -172,15 +172,9 @@ pub struct Dynamics {
     pub mass_matrix_factor: Vec<ExprId>,
     /// `1 / D_k` of the same factorisation.
     pub mass_matrix_inv_d: Vec<ExprId>,
-    /// `y = L⁻ᵀ (τ − h)` by the same factor ([`ldlt::lt_solve`]): the half of the
-    /// unconstrained solve that constrained forward dynamics reads (`A q̈₀ = Wᵀ D⁻¹ y` with
-    /// `W = L⁻ᵀ Aᵀ`).
-    pub unconstrained_half: Vec<ExprId>,
-    /// `U = L⁻¹` ([`ldlt::unit_lower_inverse`]): nv×nv row-major, unit lower triangular,
-    /// with `L`'s structural zeros.
-    pub mass_matrix_factor_inverse: Vec<ExprId>,
-    /// `q̈₀ = M⁻¹ (τ − h) = L⁻¹ D⁻¹ y` by the same factor: the unconstrained accelerations
-    /// (the same nodes as `forward_dynamics` where that takes the `Lᵀ D L` route).
+    /// `q̈₀ = M⁻¹ (τ − h)` by the same factor ([`ldlt::ltdl_apply`]): the unconstrained
+    /// accelerations that constrained forward dynamics starts from (the same nodes as
+    /// `forward_dynamics` where that takes the `Lᵀ D L` route).
     pub unconstrained: Vec<ExprId>,
     /// `τ + J_bᵀ F_tip` by Newton–Euler with the end effector's wrench `F_tip` (inputs
     /// [`task_space::F_TIP`]) applied at its link ([`rnea::ExternalWrench`]); empty where not
@@ -371,9 +365,7 @@ fn finish(
             g.sub(tau, o.bias[i])
         })
         .collect();
-    let unconstrained_half = ldlt::lt_solve(&mut g, &factor, &rhs);
-    let unconstrained = ldlt::l_solve_scaled(&mut g, &factor, &inv_d, &unconstrained_half);
-    let mass_matrix_factor_inverse = ldlt::unit_lower_inverse(&mut g, &factor);
+    let unconstrained = ldlt::ltdl_apply(&mut g, &factor, &inv_d, &rhs);
     Dynamics {
         method,
         graph: g,
@@ -394,8 +386,6 @@ fn finish(
         bias_with_tip: o.bias_with_tip,
         mass_matrix_factor: factor,
         mass_matrix_inv_d: inv_d,
-        unconstrained_half,
-        mass_matrix_factor_inverse,
         unconstrained,
     }
 }
