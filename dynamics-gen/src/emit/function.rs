@@ -117,7 +117,18 @@ pub struct FunctionBody<'a> {
     /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
     /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].
     pub plan: Option<&'a Plan>,
+    /// With [`Packs::Columns`]: the entries (row-major, `6 × cols`) of a Jacobian that the
+    /// body reads, not among its outputs, whose columns' rows seed packs before the
+    /// outputs' own: a `J̇` body's `J` ([`JACOBIAN_DOT_PACK_COLUMNS`]). Empty otherwise.
+    pub reads_jacobian: &'a [ExprId],
 }
+
+/// The most columns a Jacobian may have for its `J̇` bodies to compute its columns' rows in
+/// packs ([`FunctionBody::reads_jacobian`]): rand7's `J̇_s` ran 4–5 % faster with them and its
+/// `J̇_b` 3–4 %, G1's `J̇_b` (29 columns, 10 on the path) 2–3 % faster but its `J̇_s` 5–7 %
+/// slower, with more spills and shuffles (`docs/performance.md`, forty-fourth session). The
+/// UR5's and the Panda's code is the same either way (no seed saves enough).
+pub const JACOBIAN_DOT_PACK_COLUMNS: usize = 8;
 
 /// Where a body's packs ([`super::pack`]) start from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -537,20 +548,30 @@ impl FunctionBody<'_> {
     /// no longer pack ([`super::pack`]); packed, they run 16–26 % faster than re-associated
     /// (`docs/performance.md`, thirty-sixth session).
     pub fn tokens(&self) -> TokenStream {
-        let merged = crate::expr::equivalent::merge_equivalent(self.graph, self.outputs);
-        let (built, built_outputs) = match &merged {
-            Some((g, outputs)) => (g, &outputs[..]),
-            None => (self.graph, self.outputs),
+        let (graph, outputs, reads_jacobian) = self.rewritten(self.reads_jacobian);
+        // The Jacobian's entries as roots change how sums associate: kept only with packs.
+        let (graph, outputs, reads_jacobian) = if reads_jacobian.is_empty() || {
+            let ready = reassociate::ready_times(&graph);
+            let body = FunctionBody {
+                graph: &graph,
+                outputs: &outputs,
+                ready: &ready,
+                reads_jacobian: &reads_jacobian,
+                ..*self
+            };
+            let live = graph.live(&outputs);
+            body.packs(&live, &graph.use_counts(&outputs)).is_some()
+        } {
+            (graph, outputs, reads_jacobian)
+        } else {
+            self.rewritten(&[])
         };
-        let (mut graph, mut outputs) = reassociate::reassociate(built, built_outputs);
-        if self.packs_better_as_built(built, built_outputs, &graph, &outputs) {
-            (graph, outputs) = (built.clone(), built_outputs.to_vec());
-        }
         let ready = reassociate::ready_times(&graph);
         let body = FunctionBody {
             graph: &graph,
             outputs: &outputs,
             ready: &ready,
+            reads_jacobian: &reads_jacobian,
             ..*self
         };
         if self.lanes.is_none() {
@@ -564,6 +585,26 @@ impl FunctionBody<'_> {
             ..body
         }
         .tokens_as_given()
+    }
+
+    /// The graph and outputs as [`Self::tokens`] writes them, with `reads_jacobian`
+    /// ([`Self::reads_jacobian`]) mapped into it: equivalent nodes merged, then sums
+    /// re-associated unless they pack better as built. The Jacobian goes through both with the
+    /// outputs, as roots (so that its entries stay nodes), and is taken off them after.
+    fn rewritten(&self, reads_jacobian: &[ExprId]) -> (ExprGraph, Vec<ExprId>, Vec<ExprId>) {
+        let n = self.outputs.len();
+        let roots: Vec<ExprId> = self.outputs.iter().chain(reads_jacobian).copied().collect();
+        let merged = crate::expr::equivalent::merge_equivalent(self.graph, &roots);
+        let (built, built_roots) = match &merged {
+            Some((g, roots)) => (g, &roots[..]),
+            None => (self.graph, &roots[..]),
+        };
+        let (mut graph, mut roots) = reassociate::reassociate(built, built_roots);
+        if self.packs_better_as_built(built, &built_roots[..n], &graph, &roots[..n]) {
+            (graph, roots) = (built.clone(), built_roots.to_vec());
+        }
+        let reads_jacobian = roots.split_off(n);
+        (graph, roots, reads_jacobian)
     }
 
     /// Whether the packs of `built` (the sums as built) save more instructions than those of
@@ -1011,15 +1052,23 @@ impl FunctionBody<'_> {
         if len == 0 {
             return Vec::new();
         }
-        self.outputs
-            .chunks_exact(len)
-            .take(items)
-            .flat_map(|out| {
+        // A Jacobian the body reads (all of it, its seeds' lanes live) first: its packs are
+        // then the operands of the outputs' own.
+        let read = (self.pack == Packs::Columns && self.reads_jacobian.len() == len)
+            .then_some(self.reads_jacobian)
+            .into_iter()
+            .flat_map(|j| {
                 indices
                     .iter()
-                    .map(|k| [Some(out[k[0]]), Some(out[k[1]]), Some(out[k[2]]), None])
-            })
-            .collect()
+                    .filter(|k| k.iter().all(|&i| live[j[i].index()]))
+                    .map(|k| [Some(j[k[0]]), Some(j[k[1]]), Some(j[k[2]]), None])
+            });
+        let own = self.outputs.chunks_exact(len).take(items).flat_map(|out| {
+            indices
+                .iter()
+                .map(|k| [Some(out[k[0]]), Some(out[k[1]]), Some(out[k[2]]), None])
+        });
+        read.chain(own).collect()
     }
 
     /// The packs of this body, when [`Self::pack`] asks for them and any is found.

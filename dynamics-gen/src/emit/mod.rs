@@ -739,12 +739,13 @@ fn body_tokens(
         output,
         options,
         nalgebra,
-        function::ALIKE_PACKS,
+        (function::ALIKE_PACKS, &[]),
     )
 }
 
 /// [`body_tokens`] with the packs `pack` ([`Packs::Rows`]: the kinematics' poses;
-/// [`Packs::Columns`]: its Jacobians).
+/// [`Packs::Columns`]: its Jacobians, and with the entries of the Jacobian a body reads, its
+/// `J̇`s: [`FunctionBody::reads_jacobian`]).
 fn body_tokens_with(
     name: &str,
     graph: &crate::expr::ExprGraph,
@@ -754,7 +755,7 @@ fn body_tokens_with(
     output: Output,
     options: &Options,
     nalgebra: &TokenStream,
-    pack: Packs,
+    (pack, reads_jacobian): (Packs, &[crate::expr::ExprId]),
 ) -> TokenStream {
     if !emitted(options, name) {
         return quote!();
@@ -779,6 +780,7 @@ fn body_tokens_with(
         ready: &[],
         pack,
         plan: None,
+        reads_jacobian,
     }
     .tokens()
 }
@@ -1369,13 +1371,19 @@ fn kinematics_functions(
                 output,
                 options,
                 nalgebra,
-                pack,
+                (pack, &[]),
             )
         };
     let ee = &k.end_effector;
     let vec_ty = quote!(#nalgebra::SVector<#scalar, #nv>);
-    let dot = |name: &str, outputs: &[crate::expr::ExprId]| {
+    // A `J̇` by the packs of the `J` it reads, on arms ([`function::JACOBIAN_DOT_PACK_COLUMNS`]).
+    let dot = |name: &str, outputs: &[crate::expr::ExprId], j: &[crate::expr::ExprId]| {
         let shape = (6, nv_usize);
+        let packs = if nv_usize <= function::JACOBIAN_DOT_PACK_COLUMNS {
+            (Packs::Columns, j)
+        } else {
+            (Packs::None, &[][..])
+        };
         body_tokens_with(
             name,
             &k.graph,
@@ -1385,11 +1393,15 @@ fn kinematics_functions(
             Output::Matrix,
             options,
             nalgebra,
-            Packs::Rows,
+            packs,
         )
     };
-    let j_s_dot = dot("jacobian_space_dot", &k.jacobian_space_dot);
-    let j_b_dot = dot("jacobian_body_dot", &k.jacobian_body_dot);
+    let j_s_dot = dot(
+        "jacobian_space_dot",
+        &k.jacobian_space_dot,
+        &ee.jacobian_space,
+    );
+    let j_b_dot = dot("jacobian_body_dot", &k.jacobian_body_dot, &ee.jacobian_body);
     let pose = body("end_effector_pose", &ee.pose, 0, 0, Output::Pose);
     let j_s = body(
         "jacobian_space",
