@@ -124,10 +124,11 @@ pub struct FunctionBody<'a> {
 }
 
 /// The most columns a Jacobian may have for its `J̇` bodies to compute its columns' rows in
-/// packs ([`FunctionBody::reads_jacobian`]): rand7's `J̇_s` ran 4–5 % faster with them and its
-/// `J̇_b` 3–4 %, G1's `J̇_b` (29 columns, 10 on the path) 2–3 % faster but its `J̇_s` 5–7 %
-/// slower, with more spills and shuffles (`docs/performance.md`, forty-fourth session). The
-/// UR5's and the Panda's code is the same either way (no seed saves enough).
+/// packs ([`FunctionBody::reads_jacobian`]): rand7's `J̇_s` ran 4–8 % faster with them and its
+/// `J̇_b` 2–4 % (`f32`: 9–10 % and 13–15 %); G1's `J̇_b` (29 columns, 10 on the path) 2–3 %
+/// faster but its `J̇_s` 5–7 % slower, with more spills and shuffles (`docs/performance.md`,
+/// forty-fourth session). The UR5's and the Panda's code is the same either way (no seed
+/// saves enough).
 pub const JACOBIAN_DOT_PACK_COLUMNS: usize = 8;
 
 /// Where a body's packs ([`super::pack`]) start from.
@@ -2152,6 +2153,37 @@ mod tests {
             .generate()
             .expect("generates");
         assert!(!code.contains("v4_"));
+    }
+
+    #[test]
+    fn a_jacobian_dot_packs_the_rows_of_the_jacobian_it_reads() {
+        let dots = ["jacobian_space_dot", "jacobian_body_dot"];
+        let generate = |robot: &str| {
+            crate::Builder::new(robot)
+                .no_runtime_trait()
+                .functions(dots)
+                .generate()
+                .expect("generates")
+        };
+        // rand7's `J` packs its columns' rows, and so do its `J̇`s, which read them.
+        let code = generate("rand7");
+        for dot in dots {
+            assert!(
+                body_of(&code, dot).contains("Self::v4_fma_with::<WIDE"),
+                "{dot}"
+            );
+        }
+        // The UR5's `J` packs nothing (no seed saves enough), and its `J̇`s are scalar; so
+        // are those of a Jacobian with more than `JACOBIAN_DOT_PACK_COLUMNS` columns.
+        let g1 = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/g1_29dof.urdf"
+        );
+        for code in [generate("ur5"), generate(g1)] {
+            for dot in dots {
+                assert!(!body_of(&code, dot).contains("v4_"), "{dot}");
+            }
+        }
     }
 
     /// Solo-12's code on its floating base, `functions` only, no runtime trait.
