@@ -2030,34 +2030,37 @@ pub fn vector_helpers(scalar: Scalar) -> TokenStream {
 pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let na = nalgebra;
-    let sqrt = |x: TokenStream| match (no_std, scalar) {
-        (false, _) => quote!((#x).sqrt()),
-        (true, Scalar::F64) => quote!(::libm::sqrt(#x)),
-        (true, Scalar::F32) => quote!(::libm::sqrtf(#x)),
+    let s = match (no_std, scalar) {
+        (false, _) => quote!(a.sqrt()),
+        (true, Scalar::F64) => quote!(::libm::sqrt(a)),
+        (true, Scalar::F32) => quote!(::libm::sqrtf(a)),
     };
-    let s0 = sqrt(quote!(trace + 1.0));
-    let s1 = sqrt(quote!(1.0 + r00 - r11 - r22));
-    let s2 = sqrt(quote!(1.0 + r11 - r00 - r22));
-    let s3 = sqrt(quote!(1.0 + r22 - r00 - r11));
     quote! {
         /// A rotation matrix (rows) and a translation as an isometry; the unit quaternion by
-        /// Shepperd's method.
+        /// Shepperd's method: from the largest of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, …,
+        /// call it `a`, that component is `√a / 2` and the others `(Rᵢⱼ ± Rⱼᵢ) / (2√a)`,
+        /// computed as `((Rᵢⱼ ± Rⱼᵢ) · (½ / a)) · √a`, so that the division runs beside the
+        /// square root rather than after it.
         #[inline]
         fn isometry(r: [[#t; 3]; 3], p: [#t; 3]) -> #na::Isometry3<#t> {
             let [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]] = r;
             let trace = r00 + r11 + r22;
             let (w, x, y, z) = if trace > 0.0 {
-                let s = #s0 * 2.0;
-                (0.25 * s, (r21 - r12) / s, (r02 - r20) / s, (r10 - r01) / s)
+                let a = trace + 1.0;
+                let (h, s) = (0.5 / a, #s);
+                (0.5 * s, (r21 - r12) * h * s, (r02 - r20) * h * s, (r10 - r01) * h * s)
             } else if r00 > r11 && r00 > r22 {
-                let s = #s1 * 2.0;
-                ((r21 - r12) / s, 0.25 * s, (r01 + r10) / s, (r02 + r20) / s)
+                let a = 1.0 + r00 - r11 - r22;
+                let (h, s) = (0.5 / a, #s);
+                ((r21 - r12) * h * s, 0.5 * s, (r01 + r10) * h * s, (r02 + r20) * h * s)
             } else if r11 > r22 {
-                let s = #s2 * 2.0;
-                ((r02 - r20) / s, (r01 + r10) / s, 0.25 * s, (r12 + r21) / s)
+                let a = 1.0 + r11 - r00 - r22;
+                let (h, s) = (0.5 / a, #s);
+                ((r02 - r20) * h * s, (r01 + r10) * h * s, 0.5 * s, (r12 + r21) * h * s)
             } else {
-                let s = #s3 * 2.0;
-                ((r10 - r01) / s, (r02 + r20) / s, (r12 + r21) / s, 0.25 * s)
+                let a = 1.0 + r22 - r00 - r11;
+                let (h, s) = (0.5 / a, #s);
+                ((r10 - r01) * h * s, (r02 + r20) * h * s, (r12 + r21) * h * s, 0.5 * s)
             };
             // A struct literal: `from_parts` would need `RealField`, which nalgebra without
             // its `std` or `libm` feature does not implement.
