@@ -549,43 +549,55 @@ impl FunctionBody<'_> {
     /// no longer pack ([`super::pack`]); packed, they run 16–26 % faster than re-associated
     /// (`docs/performance.md`, thirty-sixth session).
     pub fn tokens(&self) -> TokenStream {
-        let (graph, outputs, reads_jacobian) = self.rewritten(self.reads_jacobian);
-        // The Jacobian's entries as roots change how sums associate: kept only with packs.
-        let (graph, outputs, reads_jacobian) = if reads_jacobian.is_empty() || {
+        let rewrite = |reads_jacobian: &[ExprId]| {
+            let (graph, outputs, reads_jacobian) = self.rewritten(reads_jacobian);
             let ready = reassociate::ready_times(&graph);
-            let body = FunctionBody {
-                graph: &graph,
-                outputs: &outputs,
-                ready: &ready,
-                reads_jacobian: &reads_jacobian,
-                ..*self
-            };
-            let live = graph.live(&outputs);
-            body.packs(&live, &graph.use_counts(&outputs)).is_some()
-        } {
-            (graph, outputs, reads_jacobian)
-        } else {
-            self.rewritten(&[])
+            (graph, outputs, ready, reads_jacobian)
         };
-        let ready = reassociate::ready_times(&graph);
-        let body = FunctionBody {
-            graph: &graph,
-            outputs: &outputs,
-            ready: &ready,
-            reads_jacobian: &reads_jacobian,
-            ..*self
-        };
+        let mut rewritten = rewrite(self.reads_jacobian);
+        // The Jacobian's entries as roots change how sums associate: kept only with packs.
+        {
+            let (graph, outputs, ready, reads_jacobian) = &rewritten;
+            let body = self.on(graph, outputs, ready, reads_jacobian);
+            if !reads_jacobian.is_empty() && body.all_packs().is_none() {
+                rewritten = rewrite(&[]);
+            }
+        }
+        let (graph, outputs, ready, reads_jacobian) = &rewritten;
+        let body = self.on(graph, outputs, ready, reads_jacobian);
         if self.lanes.is_none() {
             return body.tokens_as_given();
         }
-        let live = graph.live(&outputs);
-        let uses = graph.use_counts(&outputs);
-        let plan = body.packs(&live, &uses).map(|p| body.plan(&p));
+        let plan = body.all_packs().map(|p| body.plan(&p));
         FunctionBody {
             plan: plan.as_ref(),
             ..body
         }
         .tokens_as_given()
+    }
+
+    /// This body on a rewritten graph ([`Self::rewritten`]): its outputs, the nodes' ready
+    /// times and the Jacobian it reads, all in that graph.
+    fn on<'b>(
+        &'b self,
+        graph: &'b ExprGraph,
+        outputs: &'b [ExprId],
+        ready: &'b [u32],
+        reads_jacobian: &'b [ExprId],
+    ) -> FunctionBody<'b> {
+        FunctionBody {
+            graph,
+            outputs,
+            ready,
+            reads_jacobian,
+            ..*self
+        }
+    }
+
+    /// [`Self::packs`] of the nodes live for the outputs.
+    fn all_packs(&self) -> Option<Packed> {
+        let live = self.graph.live(self.outputs);
+        self.packs(&live, &self.graph.use_counts(self.outputs))
     }
 
     /// The graph and outputs as [`Self::tokens`] writes them, with `reads_jacobian`
@@ -623,15 +635,8 @@ impl FunctionBody<'_> {
         }
         let saved = |graph: &ExprGraph, outputs: &[ExprId]| {
             let ready = reassociate::ready_times(graph);
-            let body = FunctionBody {
-                graph,
-                outputs,
-                ready: &ready,
-                ..*self
-            };
-            let live = graph.live(outputs);
-            let uses = graph.use_counts(outputs);
-            body.packs(&live, &uses)
+            self.on(graph, outputs, &ready, &[])
+                .all_packs()
                 .map_or(0, |p| super::pack::saved(&p.packing.packs))
         };
         saved(built, built_outputs) > saved(reassociated, reassociated_outputs)
