@@ -556,12 +556,14 @@ impl FunctionBody<'_> {
         };
         let mut rewritten = rewrite(self.reads_jacobian);
         // The Jacobian's entries as roots change how sums associate: kept only with packs.
+        let (graph, outputs, ready, reads_jacobian) = &rewritten;
+        if !reads_jacobian.is_empty()
+            && self
+                .on(graph, outputs, ready, reads_jacobian)
+                .all_packs()
+                .is_none()
         {
-            let (graph, outputs, ready, reads_jacobian) = &rewritten;
-            let body = self.on(graph, outputs, ready, reads_jacobian);
-            if !reads_jacobian.is_empty() && body.all_packs().is_none() {
-                rewritten = rewrite(&[]);
-            }
+            rewritten = rewrite(&[]);
         }
         let (graph, outputs, ready, reads_jacobian) = &rewritten;
         let body = self.on(graph, outputs, ready, reads_jacobian);
