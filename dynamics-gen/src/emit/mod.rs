@@ -962,9 +962,8 @@ fn dynamics_extras(
         .map(|i| sg.input(expand::input(TAU, i)))
         .collect();
     let x = crate::expand::ldlt::ltdl_apply(&mut sg, &h, &inv_d, &b);
-    // Written into `constrained_forward_dynamics`' body (once per constraint row).
     let solve = emit(
-        "constrained_forward_dynamics",
+        "solve_factored",
         &sg,
         &[
             Arg {
