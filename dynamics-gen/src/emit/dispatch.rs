@@ -9,10 +9,7 @@
 //! one, and the private helpers without generic parameters (`mass_matrix_factor`, which
 //! `constrained_forward_dynamics` calls: left to the portable code, that function took 392 ns
 //! for rand7 against 171 ns for its forward dynamics, and an identical copy of it 187 or 641 ns
-//! for the Panda depending on where the optimiser inlined it). A public function with const
-//! generic parameters is one too: a batch function when its single-state function is, and
-//! `constrained_forward_dynamics` on its own (its substitutions for `Y = M⁻¹ Aᵀ`, in the
-//! caller's SSE2 code before, fused in its copies: rand7 5–8 % faster). The wrapper keeps the
+//! for the Panda depending on where the optimiser inlined it). The wrapper keeps the
 //! function's visibility:
 //!
 //! ```text
