@@ -568,16 +568,12 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
             rows_near = Some(item);
             continue;
         }
-        // A batch function follows its single-state function; another generic function
-        // (`constrained_forward_dynamics`, whose `K` sizes the caller's constraints and whose
-        // substitutions are unrolled in its body) is dispatched on its own.
         let follows = |s: &Signature| {
-            let name = s.name.to_string();
             s.generic_names.is_empty()
-                || match name.strip_suffix("_batch") {
-                    Some(single) => singles.iter().any(|n| n == single),
-                    None => true,
-                }
+                || s.name
+                    .to_string()
+                    .strip_suffix("_batch")
+                    .is_some_and(|single| singles.iter().any(|n| n == single))
         };
         match sig.filter(follows) {
             Some(sig) => {
@@ -2413,19 +2409,6 @@ mod tests {
         assert!(!std.contains("pub fn mass_matrix_factor"));
         assert!(!std.contains("joint_sin_cos_avx512"));
         assert!(!std.contains("fn isometry_avx512"));
-        // A generic function that is not a batch function is dispatched on its own:
-        // `constrained_forward_dynamics`, whose substitutions for `Y = M⁻¹ Aᵀ` are then
-        // fused, in its copies, instead of compiled where the caller is (SSE2 by default).
-        assert!(std.contains("fn constrained_forward_dynamics_avx2<const K: usize>("));
-        assert!(
-            std.contains("fn constrained_forward_dynamics_body<const WIDE: bool, const K: usize>(")
-        );
-        let body = &std[std
-            .find("fn constrained_forward_dynamics_body<")
-            .expect("its body")..];
-        assert!(
-            body[..body.find("\n    }\n").expect("its end")].contains("Self::mul_add_with::<WIDE>")
-        );
         // A batch function follows its single-state function: the pendulum's bodies are too
         // small to dispatch, and so are its batch functions, whatever their size.
         let pendulum = crate::Builder::new("pendulum")
