@@ -9,7 +9,10 @@
 //! one, and the private helpers without generic parameters (`mass_matrix_factor`, which
 //! `constrained_forward_dynamics` calls: left to the portable code, that function took 392 ns
 //! for rand7 against 171 ns for its forward dynamics, and an identical copy of it 187 or 641 ns
-//! for the Panda depending on where the optimiser inlined it). The wrapper keeps the
+//! for the Panda depending on where the optimiser inlined it). A public function with const
+//! generic parameters is one too: a batch function when its single-state function is, and
+//! `constrained_forward_dynamics` on its own (its substitutions for `Y = M⁻¹ Aᵀ`, in the
+//! caller's SSE2 code before, fused in its copies: rand7 5–8 % faster). The wrapper keeps the
 //! function's visibility:
 //!
 //! ```text
@@ -273,6 +276,9 @@ struct Used {
     vector: std::collections::BTreeSet<String>,
     /// Whether a copy aligns its frame (`align_frame`, [`aligns_frame`]).
     align_frame: bool,
+    /// The dispatched single-state functions' names and whether their bodies have `FAR`
+    /// ([`with_bodies_called`]).
+    bodies: BTreeMap<String, bool>,
 }
 
 /// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
@@ -560,20 +566,43 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
         .filter(|s| s.generic_names.is_empty())
         .map(|s| s.name.to_string())
         .collect();
-    let mut out = TokenStream::new();
+    // A body that calls another dispatched single-state function is dispatched after it, so
+    // that its copies call that function's body ([`with_bodies_called`]); the items keep their
+    // order.
+    let calls_single = |sig: &Option<Signature>| {
+        sig.as_ref()
+            .is_some_and(|s| calls_any(&s.body, &singles, &s.name.to_string()))
+    };
+    let (callers, others): (Vec<usize>, Vec<usize>) =
+        (0..items.len()).partition(|&k| calls_single(&sigs[k]));
+    let mut slots: Vec<Option<(Vec<TokenTree>, Option<Signature>)>> =
+        items.into_iter().zip(sigs).map(Some).collect();
+    let mut outs: Vec<TokenStream> = vec![TokenStream::new(); slots.len()];
     // The batch kernel for the copies, held back until it is known whether a body calls it.
     let mut rows_near = None;
-    for (item, sig) in items.into_iter().zip(sigs) {
+    for k in others.into_iter().chain(callers) {
+        let Some((item, mut sig)) = slots[k].take() else {
+            continue;
+        };
         if fn_name(&item).is_some_and(|(_, n)| n == "sin_cos_rows_near") {
             rows_near = Some(item);
             continue;
         }
+        if let Some(sig) = sig.as_mut() {
+            let body = std::mem::take(&mut sig.body);
+            sig.body = with_bodies_called(body, &used.bodies);
+        }
+        let out = &mut outs[k];
+        // A batch function follows its single-state function; another generic function
+        // (`constrained_forward_dynamics`, whose `K` sizes the caller's constraints and whose
+        // substitutions are unrolled in its body) is dispatched on its own.
         let follows = |s: &Signature| {
+            let name = s.name.to_string();
             s.generic_names.is_empty()
-                || s.name
-                    .to_string()
-                    .strip_suffix("_batch")
-                    .is_some_and(|single| singles.iter().any(|n| n == single))
+                || match name.strip_suffix("_batch") {
+                    Some(single) => singles.iter().any(|n| n == single),
+                    None => true,
+                }
         };
         match sig.filter(follows) {
             Some(sig) => {
@@ -591,6 +620,7 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
             None => out.extend(item),
         }
     }
+    let mut out: TokenStream = outs.into_iter().collect();
     if used.rows_near {
         out.extend(rows_near.into_iter().flatten());
     }
@@ -805,6 +835,9 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // A single-state body's exits need `FAR` and `X_far`; a batch's call its single-state
     // function instead.
     let has_far = exits && !is_batch;
+    if generic_names.is_empty() {
+        used.bodies.insert(name.to_string(), has_far);
+    }
     // A large batch body's AVX-512 and AVX2 copies (and a mid-sized one's with a vector
     // result): their lane arithmetic as instructions.
     let z_body = has_mark(item, super::zmm::DOC_MARK)
@@ -1067,6 +1100,82 @@ fn batch_far_call(name: &Ident, arg_names: &[Ident], ret: &TokenStream) -> Optio
         // SAFETY: the loop wrote all `B` results.
         unsafe { out.assume_init() }
     }))
+}
+
+/// Whether `body` calls (`self.f(…)`) one of the functions `names` other than `own`.
+fn calls_any(body: &TokenStream, names: &[String], own: &str) -> bool {
+    let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
+    tokens.iter().enumerate().any(|(k, t)| match t {
+        TokenTree::Group(g) => calls_any(&g.stream(), names, own),
+        _ => {
+            method_call(&tokens[k..]).is_some_and(|(f, _)| f != own && names.iter().any(|n| f == n))
+        }
+    })
+}
+
+/// The name and arguments of the call `self.f(args)` at the start of `tokens`.
+fn method_call(tokens: &[TokenTree]) -> Option<(&Ident, &Group)> {
+    match tokens {
+        [TokenTree::Ident(s), TokenTree::Punct(dot), TokenTree::Ident(f), TokenTree::Group(args), ..]
+            if s == "self"
+                && dot.as_char() == '.'
+                && args.delimiter() == Delimiter::Parenthesis =>
+        {
+            Some((f, args))
+        }
+        _ => None,
+    }
+}
+
+/// `body` with each call of a dispatched single-state function `f` (in `bodies`, with
+/// whether its body has `FAR`) made a call of its body in the copies, and of its portable
+/// copy otherwise: `self.f(args)` becomes
+///
+/// ```text
+/// { if WIDE { self.f_body::<true, false>(args) } else { self.f_portable(args) } }
+/// ```
+///
+/// (`, false` only for a body with `FAR`). Calling `f` itself, the copies would run its
+/// wrapper's CPU check, whose first call detects the CPU (a call that may unwind, so an abort
+/// path in an `extern "C"` copy, which the `no_panic` test rejects), and then its copy out of
+/// line; its body is fused into theirs instead, with its far angles left to `f_far` as in its
+/// own copies. `constrained_forward_dynamics` calls `mass_matrix_factor` so.
+fn with_bodies_called(body: TokenStream, bodies: &BTreeMap<String, bool>) -> TokenStream {
+    if bodies.is_empty() {
+        return body;
+    }
+    let tokens: Vec<TokenTree> = body.into_iter().collect();
+    let mut out = TokenStream::new();
+    let mut k = 0;
+    while k < tokens.len() {
+        if let Some((f, args)) = method_call(&tokens[k..]) {
+            if let Some(&far) = bodies.get(&f.to_string()) {
+                let args = with_bodies_called(args.stream(), bodies);
+                let body_fn = format_ident!("{}_body", f);
+                let portable = format_ident!("{}_portable", f);
+                let not_far = far.then(|| quote!(, false));
+                out.extend(quote!({
+                    if WIDE {
+                        self.#body_fn::<true #not_far>(#args)
+                    } else {
+                        self.#portable(#args)
+                    }
+                }));
+                k += 4;
+                continue;
+            }
+        }
+        match &tokens[k] {
+            TokenTree::Group(g) => {
+                let mut new = Group::new(g.delimiter(), with_bodies_called(g.stream(), bodies));
+                new.set_span(g.span());
+                out.extend([TokenTree::Group(new)]);
+            }
+            t => out.extend([t.clone()]),
+        }
+        k += 1;
+    }
+    out
 }
 
 /// `body` with the arguments as passed kept aside at its top (`far_args`) when `far` (its
@@ -2409,6 +2518,23 @@ mod tests {
         assert!(!std.contains("pub fn mass_matrix_factor"));
         assert!(!std.contains("joint_sin_cos_avx512"));
         assert!(!std.contains("fn isometry_avx512"));
+        // A generic function that is not a batch function is dispatched on its own:
+        // `constrained_forward_dynamics`, whose substitutions for `Y = M⁻¹ Aᵀ` are then
+        // fused, in its copies, instead of compiled where the caller is (SSE2 by default).
+        assert!(std.contains("fn constrained_forward_dynamics_avx2<const K: usize>("));
+        assert!(
+            std.contains("fn constrained_forward_dynamics_body<const WIDE: bool, const K: usize>(")
+        );
+        let body = &std[std
+            .find("fn constrained_forward_dynamics_body<")
+            .expect("its body")..];
+        let body = &body[..body.find("\n    }\n").expect("its end")];
+        assert!(body.contains("Self::mul_add_with::<WIDE>"));
+        // Its copies run the factor's body, not its wrapper (whose CPU check an `extern "C"`
+        // copy must not reach), and its portable copy the factor's portable copy.
+        assert!(body.contains("self.mass_matrix_factor_body::<true, false>(q, qd, tau)"));
+        assert!(body.contains("self.mass_matrix_factor_portable(q, qd, tau)"));
+        assert!(!body.contains("self.mass_matrix_factor("));
         // A batch function follows its single-state function: the pendulum's bodies are too
         // small to dispatch, and so are its batch functions, whatever their size.
         let pendulum = crate::Builder::new("pendulum")
@@ -2433,5 +2559,34 @@ mod tests {
             assert!(attrs.contains("#[inline(never)]") && !attrs.contains("cfg_attr"));
             assert!(code.contains("self.inverse_dynamics_batch_out_of_line::<B>(q, qd, qdd)"));
         }
+    }
+
+    /// A dispatched body's calls of other dispatched single-state functions: their bodies in
+    /// the copies, their portable copies otherwise; `, false` for a body with `FAR`; calls in
+    /// the arguments too; other calls left alone.
+    #[test]
+    fn calls_of_dispatched_functions_become_calls_of_their_bodies() {
+        use super::{calls_any, with_bodies_called};
+        use quote::quote;
+        use std::collections::BTreeMap;
+        let bodies: BTreeMap<String, bool> =
+            [("g".to_string(), true), ("h".to_string(), false)].into();
+        let body = quote!(let x = self.g(a, self.h(b)); let y = (self.k(x), self.h(c)); y);
+        let out = with_bodies_called(body.clone(), &bodies).to_string();
+        assert!(
+            out.contains("self . g_body :: < true , false > (a , {"),
+            "{out}"
+        );
+        assert!(out.contains("self . h_body :: < true > (b)"), "{out}");
+        assert!(out.contains("self . g_portable (a , {"), "{out}");
+        assert!(out.contains("self . h_portable (c)"), "{out}");
+        assert!(out.contains("self . k (x)"), "{out}");
+        assert!(
+            !out.contains("self . g (") && !out.contains("self . h ("),
+            "{out}"
+        );
+        assert!(calls_any(&body, &["h".to_string()], "g"));
+        assert!(!calls_any(&body, &["h".to_string()], "h"));
+        assert!(!calls_any(&body, &["m".to_string()], "g"));
     }
 }

@@ -785,13 +785,14 @@ fn body_tokens_with(
     .tokens()
 }
 
-/// Input groups of the private `solve_factored` helper: the packed factor `L` and `1/D`.
+/// Input groups of the solve `M⁻¹ b` written into `constrained_forward_dynamics` (once per
+/// constraint row): the packed factor `L` and `1/D`.
 const FACTOR_L: u8 = 5;
 const FACTOR_INV_D: u8 = 6;
 
 /// `coriolis_matrix`, `mass_matrix_and_bias`, the tip-wrench functions, the task-space
 /// functions, and `constrained_forward_dynamics` with its private helpers
-/// (`mass_matrix_factor`, `solve_factored`, `solve_constraint`).
+/// (`mass_matrix_factor`, `solve_constraint`).
 fn dynamics_extras(
     d: &Dynamics,
     t: &TaskSpace,
@@ -961,8 +962,9 @@ fn dynamics_extras(
         .map(|i| sg.input(expand::input(TAU, i)))
         .collect();
     let x = crate::expand::ldlt::ltdl_apply(&mut sg, &h, &inv_d, &b);
+    // Written into `constrained_forward_dynamics`' body (once per constraint row).
     let solve = emit(
-        "solve_factored",
+        "constrained_forward_dynamics",
         &sg,
         &[
             Arg {
@@ -1084,7 +1086,7 @@ fn dynamics_extras(
         /// By the Schur complement: `q̈₀ = M⁻¹(τ − h)`, `Y = M⁻¹ Aᵀ` (the unrolled
         /// `M = Lᵀ D L`, `q̈₀` in the factor's body), `(A Y) λ = −(A q̈₀ + Ȧ q̇)`,
         /// `q̈ = q̈₀ + Y λ`. `K` is the caller's, so the `K`-sized part runs in loops (no
-        /// allocation).
+        /// allocation), each column of `Y` by the unrolled substitutions.
         #[doc = ""]
         #[doc = #tol_doc]
         #[inline]
@@ -1101,7 +1103,9 @@ fn dynamics_extras(
             let (l, inv_d, free) = self.mass_matrix_factor(q, qd, tau);
             let mut y = #nalgebra::SMatrix::<#scalar, #nv, K>::zeros();
             for (mut column, row) in y.column_iter_mut().zip(a.row_iter()) {
-                column.copy_from(&Self::solve_factored(&l, &inv_d, &row.transpose()));
+                // `M⁻¹ b` from the factors: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
+                let (l, inv_d, b) = (&l, &inv_d, &row.transpose());
+                column.copy_from(&{ #solve });
             }
             let s = a * y;
             let r = -(a * free + a_dot_qd);
@@ -1122,11 +1126,6 @@ fn dynamics_extras(
             #factor
         }
 
-        /// `M⁻¹ b` from the factors of `mass_matrix_factor`: `Lᵀ y = b`, `z = D⁻¹ y`, `L x = z`.
-        #[inline]
-        fn solve_factored(l: &#l_ty, inv_d: &#vec_ty, b: &#vec_ty) -> #vec_ty {
-            #solve
-        }
 
         /// `S⁻¹ r` for the symmetric `S` by `S = L D Lᵀ` (in place, no pivoting); `None` when
         /// a pivot is not greater than `√ε` times its diagonal entry.
@@ -1313,7 +1312,6 @@ const HELPERS: &[(&str, &[&str])] = &[
     ("friction_rate", DERIVATIVE_FUNCTIONS),
     ("isometry", &["end_effector_pose", "frame_poses"]),
     ("mass_matrix_factor", &["constrained_forward_dynamics"]),
-    ("solve_factored", &["constrained_forward_dynamics"]),
     ("solve_constraint", &["constrained_forward_dynamics"]),
 ];
 
