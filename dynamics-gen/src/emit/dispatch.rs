@@ -576,8 +576,8 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
         sig.as_ref()
             .is_some_and(|s| calls_any(&s.body, &singles, &s.name.to_string()))
     };
-    let (callers, others): (Vec<usize>, Vec<usize>) =
-        (0..items.len()).partition(|&k| calls_single(&sigs[k]));
+    let is_caller: Vec<bool> = sigs.iter().map(calls_single).collect();
+    let (callers, others): (Vec<usize>, Vec<usize>) = (0..items.len()).partition(|&k| is_caller[k]);
     let mut slots: Vec<Option<(Vec<TokenTree>, Option<Signature>)>> =
         items.into_iter().zip(sigs).map(Some).collect();
     let mut outs: Vec<TokenStream> = vec![TokenStream::new(); slots.len()];
@@ -591,7 +591,7 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
             rows_near = Some(item);
             continue;
         }
-        if let Some(sig) = sig.as_mut() {
+        if let Some(sig) = sig.as_mut().filter(|_| is_caller[k]) {
             let body = std::mem::take(&mut sig.body);
             sig.body = with_bodies_called(body, &used.bodies);
         }
@@ -1144,9 +1144,6 @@ fn method_call(tokens: &[TokenTree]) -> Option<(&Ident, &Group)> {
 /// line; its body is fused into theirs instead, with its far angles left to `f_far` as in its
 /// own copies. `constrained_forward_dynamics` calls `mass_matrix_factor` so.
 fn with_bodies_called(body: TokenStream, bodies: &BTreeMap<String, bool>) -> TokenStream {
-    if bodies.is_empty() {
-        return body;
-    }
     let tokens: Vec<TokenTree> = body.into_iter().collect();
     let mut out = TokenStream::new();
     let mut k = 0;

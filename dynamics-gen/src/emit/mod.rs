@@ -1126,7 +1126,6 @@ fn dynamics_extras(
             #factor
         }
 
-
         /// `S⁻¹ r` for the symmetric `S` by `S = L D Lᵀ` (in place, no pivoting); `None` when
         /// a pivot is not greater than `√ε` times its diagonal entry.
         #[inline]
