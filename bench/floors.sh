@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# What bounds a generated function below 20x the generic reference: its AVX-512 copy's
-# machine code counted, and the time its multiplications and its stores alone would take.
+# What bounds a generated function below 20x the generic reference: the machine code of the
+# copy this CPU runs counted, and the time its multiplications and its stores alone would take.
 #
 #   bash bench/floors.sh SIDE_BY_SIDE_OUTPUT [BENCH_BINARY]
 #
@@ -8,8 +8,9 @@
 # "Where issue #12's bars stand"; lines `side-by-side LABEL FUNCTION ours reference ratio q1
 # q3`). BENCH_BINARY: the binary that printed it (default: the newest
 # target/bench-default/release/deps/dynamics-*). For every single-state cell below RATIO (20 by
-# default) whose copy is found (the AVX-512 copies of the f64 code, `<module>::Robot::<function>_avx512`),
-# it disassembles the copy (objdump, Intel syntax) and prints:
+# default) whose copy is found (`<module>::Robot::<function>_$COPY` of the f64 code; COPY defaults
+# to the copy the dispatch runs here: avx512 on an AMD core with AVX-512, avx2 elsewhere, Intel's
+# AVX-512 cores included), it disassembles the copy (objdump, Intel syntax) and prints:
 #   instr, bytes      instructions and code bytes of the copy
 #   mult              multiplication slots: vmul*/vfma*/vfnma*/vfms*/vfnms*, a 512-bit one twice
 #                     (Zen 4 has two units, and a zmm operation takes both)
@@ -19,8 +20,10 @@
 #   floor_mul         mult / 2 cycles, in ns at GHZ (default: the clock `bench/ports.rs`
 #                     calibrates now, with a chain of dependent multiply-adds; run this right
 #                     after the side-by-side run, as the machine's clock drifts)
-#   floor_st          (stores + memset / 32) / 1 per cycle, in ns (Zen 4 retires one
-#                     floating-point store a cycle; the zeroing counted as 32-byte stores)
+#   floor_st          (stores + memset / 32) / STORES per cycle, in ns (default: the rate
+#                     `bench/ports.rs` measures for stores into one cache line: 1 a cycle on
+#                     Zen 3 and Zen 4, 2 on Intel's Emerald Rapids; the zeroing counted as
+#                     32-byte stores)
 #   floor_fetch       for a copy larger than a 32 KB instruction cache: bytes / FETCH, the
 #                     rate straight-line code that large runs at (bytes/ns; default: the
 #                     `fetch:` line of `bench/ports.rs`, measured now); `-` for smaller copies
@@ -41,15 +44,23 @@ RATIO=${RATIO:-20}
 SYMS=$(mktemp)
 TMP=$(mktemp -d)
 trap 'rm -rf "$SYMS" "$TMP"' EXIT
-if [ -z "${GHZ:-}" ] || [ -z "${FETCH:-}" ]; then
+if [ -z "${GHZ:-}" ] || [ -z "${FETCH:-}" ] || [ -z "${STORES:-}" ]; then
   rustc -O --edition 2021 "$ROOT/bench/ports.rs" -o "$TMP/ports"
   "$TMP/ports" >"$TMP/ports.txt"
   GHZ=${GHZ:-$(awk '/^clock:/ { print $2; exit }' "$TMP/ports.txt")}
   FETCH=${FETCH:-$(awk '/^fetch:/ { print $2; exit }' "$TMP/ports.txt")}
-  [ -n "$GHZ" ] && [ -n "$FETCH" ] ||
-    { echo "floors.sh: no clock or fetch rate from bench/ports.rs (x86-64 only); set GHZ and FETCH" >&2; exit 1; }
+  # "8 f64 stores (vmovsd), one cache line   <ns> ns   <cycles> cycles": 8 / cycles, rounded
+  # to a whole number of stores per cycle.
+  STORES=${STORES:-$(awk '/stores \(vmovsd\), one cache line/ { c = $(NF - 1); printf "%d", 8 / c + 0.5; exit }' "$TMP/ports.txt")}
+  [ -n "$GHZ" ] && [ -n "$FETCH" ] && [ -n "$STORES" ] ||
+    { echo "floors.sh: no clock, fetch or store rate from bench/ports.rs (x86-64 only); set GHZ, FETCH and STORES" >&2; exit 1; }
 fi
-echo "clock: $GHZ GHz; fetch beyond 32 KB: $FETCH bytes/ns; bar: ${RATIO}x; binary: $BIN"
+if [ -z "${COPY:-}" ]; then
+  COPY=avx2
+  grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null &&
+    grep -q '^flags.* avx512f' /proc/cpuinfo 2>/dev/null && COPY=avx512
+fi
+echo "clock: $GHZ GHz; fetch beyond 32 KB: $FETCH bytes/ns; stores: $STORES per cycle; copies: _$COPY; bar: ${RATIO}x; binary: $BIN"
 nm -S --demangle "$BIN" | awk '$3 == "T" || $3 == "t"' >"$SYMS"
 
 # The module a side-by-side label's code is in (tests/src/generated.rs).
@@ -67,15 +78,15 @@ printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %11s %6s %6s %6s %7s %s\n' \
 awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < r + 0 { print $2, $3, $4, $5 }' "$SBS" |
   while read -r label fn ours reference; do
     m=$(module_of "$label")
-    line=$([ -n "$m" ] && grep " dynamics_tests::generated::$m::Robot::${fn}_avx512\$" "$SYMS" || true)
+    line=$([ -n "$m" ] && grep " dynamics_tests::generated::$m::Robot::${fn}_$COPY\$" "$SYMS" || true)
     if [ -z "$line" ]; then
-      printf '%-18s %-30s (no %s_avx512 symbol: not dispatched, or inlined into the benchmark)\n' "$label" "$fn" "$fn"
+      printf '%-18s %-30s (no %s_%s symbol: not dispatched, or inlined into the benchmark)\n' "$label" "$fn" "$fn" "$COPY"
       continue
     fi
     read -r start size _ <<<"$line"
     objdump -d --no-show-raw-insn -M intel --start-address=$((16#$start)) \
       --stop-address=$((16#$start + 16#$size)) "$BIN" |
-      awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" -v fetch="$FETCH" \
+      awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" -v fetch="$FETCH" -v spc="$STORES" \
         -v ours="$ours" -v ref="$reference" -v r="$RATIO" '
         NF >= 2 && $1 ~ /^ *[0-9a-f]+:$/ {
           n++
@@ -98,7 +109,7 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
         }
         END {
           fm = mult / 2 / ghz
-          fs = (stores + memset / 32) / ghz
+          fs = (stores + memset / 32) / spc / ghz
           at = ref / r
           ff = bytes > 32768 ? bytes / fetch : 0
           bound = (ff > at ? " fetch" : "") (fs > at ? " stores" : "") (fm > at ? " mult" : "")

@@ -11,7 +11,11 @@
 # Pinocchio's code-generated functions (bench/run_codegen.sh) as a second ratio.
 #   bash bench/unseen.sh
 #   NATIVE=0 CODEGEN=1 bash bench/unseen.sh
-#   BY_REF=1 ...: our results to black_box by reference (as Pinocchio's stay in its Data)
+#   Our results go to black_box by reference, as bench/run.sh's do (`keep` in
+#   tests/benches/dynamics.rs) and as Pinocchio's stay in its Data; BY_VALUE=1 ...: by value, so
+#   that each call's result is copied out of the return slot once more (what a caller pays who
+#   copies the returned vector at once: the copy's wide loads read across the callee's 8-byte
+#   stores, and store-to-load forwarding fails; before 2026-12-05 this was the default).
 #   ROUNDS=3 (default): Pinocchio's benchmark and ours run alternately this many times, and each
 #   side keeps its lowest median per function (as run_codegen.sh does for the code generation):
 #   on a shared machine a neighbour's burst then slows one round, not one side's whole figure.
@@ -82,8 +86,9 @@ if [ "${CODEGEN:-0}" = 1 ]; then
 fi
 if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
 FEATURES=()
-if [ "${BY_REF:-0}" = 1 ]; then FEATURES=(--features by-ref); fi
-echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}'${FEATURES:+, results to black_box by reference}"
+FEATURES=(--features by-ref)
+if [ "${BY_VALUE:-0}" = 1 ]; then FEATURES=(); fi
+echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', results to black_box $([ ${#FEATURES[@]} = 0 ] && echo by value || echo by reference)"
 (cd "$HERE/unseen" && cargo build -q --release "${FEATURES[@]}")
 : > "$WORK/ours.txt"
 for round in $(seq "$ROUNDS"); do

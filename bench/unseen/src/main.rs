@@ -1,8 +1,9 @@
 //! Times the generated functions of the arms bench/unseen.sh generates into
 //! `src/generated/` (1,024 seeded random states in ±2 rad and ±1, cycled through `black_box`;
 //! median of 7 runs of 20,000 calls), one line per robot and function: `ROBOT FUNCTION NS`.
-//! Results go to `black_box` by value, or by reference with the `by-ref` feature
-//! (`BY_REF=1 bash bench/unseen.sh`), as Pinocchio's benchmarks leave theirs in `Data`.
+//! Results go to `black_box` by reference with the `by-ref` feature (`bench/unseen.sh`'s
+//! default), as Pinocchio's benchmarks leave theirs in `Data`, or by value without it
+//! (`BY_VALUE=1 bash bench/unseen.sh`).
 
 use nalgebra::SVector;
 use std::hint::black_box;
