@@ -85,7 +85,6 @@ if [ "${CODEGEN:-0}" = 1 ]; then
   tee -a "$WORK/pinocchio.txt" < "$CACHE/pinocchio_codegen.txt"
 fi
 if [ "${NATIVE:-1}" = 1 ]; then export RUSTFLAGS="${RUSTFLAGS:-} -C target-cpu=native"; fi
-FEATURES=()
 FEATURES=(--features by-ref)
 if [ "${BY_VALUE:-0}" = 1 ]; then FEATURES=(); fi
 echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', results to black_box $([ ${#FEATURES[@]} = 0 ] && echo by value || echo by reference)"
