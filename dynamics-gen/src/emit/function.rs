@@ -2047,8 +2047,9 @@ pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> 
         /// Shepperd's method: from the largest of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, …,
         /// call it `a`, that component is `√a / 2` and the others `(Rᵢⱼ ± Rⱼᵢ) / (2√a)`,
         /// computed as `((Rᵢⱼ ± Rⱼᵢ) · (½ / a)) · √a`, so that the division runs beside the
-        /// square root rather than after it.
-        #[inline]
+        /// square root rather than after it. Always in line: called, it took the matrix and
+        /// returned the isometry through memory, and in a dispatched copy ran as SSE code.
+        #[inline(always)]
         fn isometry(r: [[#t; 3]; 3], p: [#t; 3]) -> #na::Isometry3<#t> {
             let [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]] = r;
             let trace = r00 + r11 + r22;
