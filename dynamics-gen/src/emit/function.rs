@@ -2031,9 +2031,10 @@ pub fn vector_helpers(scalar: Scalar) -> TokenStream {
 }
 
 /// The private `isometry(r, p)` helper of a generated impl: a rotation matrix (by rows) and a
-/// translation as `Isometry3`, the unit quaternion by Shepperd's method (from the largest of
-/// `1 + tr R`, `1 + 2R₀₀ − tr R`, …, so the square root's argument is at least 1 and no
-/// division is ill-conditioned). Branches, no panic; `sqrt` through `libm` for `no_std`.
+/// translation as `Isometry3`, the unit quaternion by Shepperd's method (from `1 + tr R` where
+/// `tr R > 0`, otherwise from the largest of `1 + 2R₀₀ − tr R`, `1 + 2R₁₁ − tr R`, `1 + 2R₂₂ −
+/// tr R`, so that the square root's argument is at least 1 and no division is
+/// ill-conditioned). Branches, no panic; `sqrt` through `libm` for `no_std`.
 pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
     let na = nalgebra;
@@ -2044,8 +2045,9 @@ pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> 
     };
     quote! {
         /// A rotation matrix (rows) and a translation as an isometry; the unit quaternion by
-        /// Shepperd's method: from the largest of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, …,
-        /// call it `a`, that component is `√a / 2` and the others `(Rᵢⱼ ± Rⱼᵢ) / (2√a)`,
+        /// Shepperd's method: from `4w² = 1 + tr R` where `tr R > 0`, otherwise from the
+        /// largest of `4x² = 1 + 2R₀₀ − tr R`, `4y²`, `4z²` (at least 1 either way): with that
+        /// one `a`, its component is `√a / 2` and the others `(Rᵢⱼ ± Rⱼᵢ) / (2√a)`,
         /// computed as `((Rᵢⱼ ± Rⱼᵢ) · (½ / a)) · √a`, so that the division runs beside the
         /// square root rather than after it. Always in line: called, it took the matrix and
         /// returned the isometry through memory, and in a dispatched copy ran as SSE code.
