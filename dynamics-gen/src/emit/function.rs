@@ -2049,8 +2049,8 @@ pub fn isometry_helper(scalar: Scalar, no_std: bool, nalgebra: &TokenStream) -> 
         /// largest of `4x² = 1 + 2R₀₀ − tr R`, `4y²`, `4z²` (at least 1 either way): with that
         /// one `a`, its component is `√a / 2` and the others `(Rᵢⱼ ± Rⱼᵢ) / (2√a)`,
         /// computed as `((Rᵢⱼ ± Rⱼᵢ) · (½ / a)) · √a`, so that the division runs beside the
-        /// square root rather than after it. Always in line: called, it took the matrix and
-        /// returned the isometry through memory, and in a dispatched copy ran as SSE code.
+        /// square root rather than after it. Always in line: a call would pass the matrix and
+        /// the isometry through memory, and from a dispatched copy run the baseline's code.
         #[inline(always)]
         fn isometry(r: [[#t; 3]; 3], p: [#t; 3]) -> #na::Isometry3<#t> {
             let [[r00, r01, r02], [r10, r11, r12], [r20, r21, r22]] = r;
