@@ -64,6 +64,7 @@ pub mod task_space;
 use crate::expr::{ExprGraph, ExprId, Input};
 use dynamics_model::{JointKind, Robot};
 use rnea::LinkForce;
+use rnea_classical::Euler;
 use spatial::{JointMotion, ShiftForm, VectorOps};
 
 /// Input group of the joint positions q.
@@ -458,11 +459,14 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
         let forms = [LinkForce::Spatial, LinkForce::Classical];
         let [a, b] =
             forms.map(|f| rnea::rnea(g, &motions, &base, base_inertia, v, vd, f, external));
-        let c = rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd, external);
+        let [c, d] = [Euler::Vector, Euler::Tensor].map(|e| {
+            rnea_classical::rnea_classical(g, &motions, &base, base_inertia, v, vd, external, e)
+        });
         // The cheapest of the equal forms (ties keep the earlier one), projected onto the
         // coordinates.
         let best = cheaper(g, a, b);
-        let mut best = cheaper(g, best, c);
+        let best = cheaper(g, best, c);
+        let mut best = cheaper(g, best, d);
         // The rotors' inertial forces, armature · θ̈_i.
         for (i, &arm) in armature.iter().enumerate() {
             if arm != 0.0 {

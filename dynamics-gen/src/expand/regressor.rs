@@ -209,7 +209,16 @@ pub fn expand_regressor(robot: &Robot) -> Regressor {
             LinkForce::Classical,
             None,
         );
-        let d = super::rnea_classical::rnea_classical(&mut g, &motions, &base, bi, v, vd, None);
+        let d = super::rnea_classical::rnea_classical(
+            &mut g,
+            &motions,
+            &base,
+            bi,
+            v,
+            vd,
+            None,
+            super::rnea_classical::Euler::Vector,
+        );
         let best = cheaper(&g, a, c);
         let best = cheaper(&g, best, d);
         columns.push(coupling.forces(&mut g, &best));

@@ -18,12 +18,84 @@
 //! with `ω_0 = ω̇_0 = 0` and `a_0 = −g` on a fixed base (gravity is an upward acceleration of
 //! the base), or the floating base's `ω_0`, `ω̇_0` and `a_0 = v̇_0 + ω_0 × v_0 − g_0`; on a
 //! tree `i − 1` reads `λ(i)` and the backward pass adds each wrench into its parent's.
+//!
+//! [`Euler::Tensor`] writes the same terms through each body's angular acceleration tensor
+//! (Balafoutis and Patel, *Dynamic Analysis of Robot Manipulators: A Cartesian Tensor
+//! Approach*, 1991), `W = [ω̇]× + [ω]×² = [ω̇]× + ω ωᵀ − |ω|² 1`, six products of `ω` built
+//! once a body and read by every term that moves a point with it:
+//!
+//! ```text
+//!   ω̇ × r + ω × (ω × r) = W r                       (9 products by a constant r, not 15)
+//!   a_K = R (a_{i−1} + W_{i−1} r'),  r' = −Rᵀ p       (the child's origin in {J_{i−1}})
+//!   f_i = m_i a_i + W_i h_i
+//!   I ω̇ + ω × I ω = vee(W J − J Wᵀ),  J = ½ tr(I) 1 − I   (the second moment; 18 products, not 24)
+//! ```
+//!
+//! (`[Iω̇]× = [ω̇]× J + J [ω̇]×` for a symmetric `J`, and `ω ωᵀ J − J ω ωᵀ = [Jω × ω]×`, with
+//! `ω × Iω = Jω × ω`.)
 
 use super::frames::BodyInertia;
+use super::kinematics::M3;
 use super::rnea::{link_force, BaseMotion, LinkForce};
 use super::spatial::{rot_z_t, Inertia, JointMotion, Spatial, VectorOps, V3};
 use crate::expr::{ExprGraph, ExprId};
 use dynamics_model::JointKind;
+
+/// How the classical form writes a body's angular terms; the two are equal, and which needs
+/// fewer operations depends on the robot (the expansion takes the cheaper).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Euler {
+    /// Cross products, `|ω|²` carried along the chain.
+    Vector,
+    /// Through the tensor `W` (module docs).
+    Tensor,
+}
+
+/// `W = [ω̇]× + ω ωᵀ − |ω|² 1`, by rows.
+fn tensor(g: &mut ExprGraph, w: V3, wd: V3) -> M3 {
+    let sq: V3 = std::array::from_fn(|k| g.mul(w[k], w[k]));
+    let xy = g.mul(w[0], w[1]);
+    let xz = g.mul(w[0], w[2]);
+    let yz = g.mul(w[1], w[2]);
+    let diag = |g: &mut ExprGraph, a: usize, b: usize| {
+        let s = g.add(sq[a], sq[b]);
+        g.neg(s)
+    };
+    [
+        [diag(g, 1, 2), g.sub(xy, wd[2]), g.add(xz, wd[1])],
+        [g.add(xy, wd[2]), diag(g, 0, 2), g.sub(yz, wd[0])],
+        [g.sub(xz, wd[1]), g.add(yz, wd[0]), diag(g, 0, 1)],
+    ]
+}
+
+/// `W r`.
+fn apply(g: &mut ExprGraph, w: &M3, r: V3) -> V3 {
+    std::array::from_fn(|k| g.dot(&w[k], &r))
+}
+
+/// `vee(W J − J Wᵀ)` (any `W + σ 1` gives the same) for the second moment `J = ½ tr(I) 1 − I` of the inertia `i` (entries
+/// `xx, yy, zz, xy, xz, yz`): `I ω̇ + ω × I ω`. Component `a` (with `(b, c)` the next two
+/// axes) is `Σ_k W_ck J_kb − W_bk J_kc`, one sum of six products.
+fn euler_tensor(g: &mut ExprGraph, w: &M3, i: &[ExprId; 6]) -> V3 {
+    let tr = g.sum(&[i[0], i[1], i[2]]);
+    let half = g.cmul(0.5, tr);
+    let diag: V3 = std::array::from_fn(|k| g.sub(half, i[k]));
+    let (xy, xz, yz) = (g.neg(i[3]), g.neg(i[4]), g.neg(i[5]));
+    let j = [[diag[0], xy, xz], [xy, diag[1], yz], [xz, yz, diag[2]]];
+    std::array::from_fn(|a| {
+        let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+        let lhs = [w[c][0], w[c][1], w[c][2], w[b][0], w[b][1], w[b][2]];
+        let rhs = [
+            j[0][b],
+            j[1][b],
+            j[2][b],
+            g.neg(j[0][c]),
+            g.neg(j[1][c]),
+            g.neg(j[2][c]),
+        ];
+        g.dot(&lhs, &rhs)
+    })
+}
 
 /// `ω × (ω × r) = ω (ω·r) − r |ω|²`, with `|ω|²` given (it is carried along the chain).
 fn double_cross(g: &mut ExprGraph, w: V3, w_sq: ExprId, r: V3) -> V3 {
@@ -43,7 +115,8 @@ fn transport(g: &mut ExprGraph, a: V3, w: V3, w_sq: ExprId, wd: V3, r: V3) -> V3
 
 /// The generalised forces for the given symbolic velocities and accelerations and the
 /// base's motion, as [`super::rnea::rnea`] (base entries first with a floating base;
-/// `external` as there).
+/// `external` as there), the angular terms written out as `euler` says.
+#[allow(clippy::too_many_arguments)]
 pub fn rnea_classical(
     g: &mut ExprGraph,
     joints: &[JointMotion<'_>],
@@ -52,28 +125,47 @@ pub fn rnea_classical(
     qd: &[ExprId],
     qdd: &[ExprId],
     external: Option<&super::rnea::ExternalWrench>,
+    euler: Euler,
 ) -> Vec<ExprId> {
+    let tensor_form = euler == Euler::Tensor;
     let n = joints.len();
     // The base's ω, |ω|², ω̇ and the classical acceleration a = v̇ + ω × v of its origin.
     let base_w = base.v.ang;
     let base_w_sq = g.dot(&base_w, &base_w);
     let base_wxv = g.cross(base.v.ang, base.v.lin);
     let base_a = g.add3(base.vd.lin, base_wxv);
+    let base_tensor = if tensor_form {
+        tensor(g, base_w, base.vd.ang)
+    } else {
+        [[g.zero(); 3]; 3]
+    };
     // Per joint: ω, |ω|² (carried along: a rotation keeps it, and a revolute joint adds
     // θ̇ (2 ω_z + θ̇)), ω̇, a.
-    let mut states: Vec<(V3, ExprId, V3, V3)> = Vec::with_capacity(n);
+    // With the tensor form, each body's `W` too.
+    let mut states: Vec<(V3, ExprId, V3, V3, M3)> = Vec::with_capacity(n);
     let mut forces = Vec::with_capacity(n);
     for (i, jm) in joints.iter().enumerate() {
-        let (mut w, mut w_sq, mut wd, mut a) = match jm.frame.parent {
+        let (mut w, mut w_sq, mut wd, mut a, parent_tensor) = match jm.frame.parent {
             Some(p) => states[p],
-            None => (base_w, base_w_sq, base.vd.ang, base_a),
+            None => (base_w, base_w_sq, base.vd.ang, base_a, base_tensor),
         };
         let f = jm.frame;
         let w_k = g.rot(&f.r, w);
         let wd_k = g.rot(&f.r, wd);
-        let ra = g.rot(&f.r, a);
-        let r = g.const3([-f.p[0], -f.p[1], -f.p[2]]);
-        let a_k = transport(g, ra, w_k, w_sq, wd_k, r);
+        let a_k = if tensor_form {
+            // The origin of {J_i} in {J_λ}: r' = −Rᵀ p; moved there with W_λ, then rotated.
+            let r: [f64; 3] =
+                std::array::from_fn(|k| -(0..3).map(|l| f.r[l][k] * f.p[l]).sum::<f64>());
+            let r = g.const3(r);
+            let wr = apply(g, &parent_tensor, r);
+            let t = g.add3(a, wr);
+            g.rot(&f.r, t)
+        } else {
+            let ra = g.rot(&f.r, a);
+            let r = g.const3([-f.p[0], -f.p[1], -f.p[2]]);
+            transport(g, ra, w_k, w_sq, wd_k, r)
+        };
+        let mut own_tensor = None;
         match f.kind {
             JointKind::Revolute => {
                 w = rot_z_t(g, jm.sin, jm.cos, w_k);
@@ -94,9 +186,18 @@ pub fn rnea_classical(
             JointKind::Prismatic => {
                 w = w_k;
                 wd = wd_k;
-                let zero = g.zero();
-                let s = [zero, zero, jm.q];
-                a = transport(g, a_k, w, w_sq, wd, s);
+                a = if tensor_form {
+                    // W s = W e_z θ for s = (0, 0, θ).
+                    let t = tensor(g, w, wd);
+                    own_tensor = Some(t);
+                    let column = [t[0][2], t[1][2], t[2][2]];
+                    let ws = g.scale3(jm.q, column);
+                    g.add3(a_k, ws)
+                } else {
+                    let zero = g.zero();
+                    let s = [zero, zero, jm.q];
+                    transport(g, a_k, w, w_sq, wd, s)
+                };
                 // 2 ω × e_z θ̇ = 2θ̇ (ω_y, −ω_x, 0).
                 let two_qd = g.cmul(2.0, qd[i]);
                 let t0 = g.mul(w[1], two_qd);
@@ -107,20 +208,37 @@ pub fn rnea_classical(
             }
         }
         let gi = super::parameters::link_inertia(g, f);
-        let iwd = gi.rotational(g, wd);
-        let iw = gi.rotational(g, w);
-        let w_iw = g.cross(w, iw);
         let hxa = g.cross(gi.h, a);
-        let n1 = g.add3(iwd, w_iw);
         let ma = g.scale3(gi.m, a);
-        let wdxh = g.cross(wd, gi.h);
-        let wwh = double_cross(g, w, w_sq, gi.h);
-        let f1 = g.add3(ma, wdxh);
+        let (own_tensor, n1, f1) = if tensor_form {
+            let t = match own_tensor {
+                Some(t) => t,
+                None => tensor(g, w, wd),
+            };
+            // The Euler terms read `W + |ω|² 1` (diagonal `ω_k²`): the shift commutes with
+            // `J` and drops out, and the squares are ready before the diagonal's sums.
+            let mut shifted = t;
+            for (k, row) in shifted.iter_mut().enumerate() {
+                row[k] = g.mul(w[k], w[k]);
+            }
+            let n1 = euler_tensor(g, &shifted, &gi.i);
+            let wh = apply(g, &t, gi.h);
+            (t, n1, g.add3(ma, wh))
+        } else {
+            let iwd = gi.rotational(g, wd);
+            let iw = gi.rotational(g, w);
+            let w_iw = g.cross(w, iw);
+            let n1 = g.add3(iwd, w_iw);
+            let wdxh = g.cross(wd, gi.h);
+            let wwh = double_cross(g, w, w_sq, gi.h);
+            let f1 = g.add3(ma, wdxh);
+            (base_tensor, n1, g.add3(f1, wwh))
+        };
         forces.push(Spatial {
             ang: g.add3(n1, hxa),
-            lin: g.add3(f1, wwh),
+            lin: f1,
         });
-        states.push((w, w_sq, wd, a));
+        states.push((w, w_sq, wd, a, own_tensor));
     }
     let base_force = base_inertia.map(|b| {
         let gb = Inertia::constant(g, b);

@@ -221,3 +221,100 @@ fn pruning_is_checked_on_a_deep_tree() {
         );
     }
 }
+
+/// Every Newton–Euler form (the link wrench spatial or classical; classical accelerations
+/// with cross products or through the tensor `W`) gives the same forces, on trees, floating
+/// bases and prismatic joints, with gravity and a wrench at the end effector.
+#[test]
+fn every_newton_euler_form_gives_the_same_forces() {
+    use rnea::LinkForce;
+    use rnea_classical::Euler;
+    for seed in 0..24u64 {
+        let r = random_tree(seed, spec(seed));
+        let (q, v, a) = state(&r, seed, 1.0);
+        let mut rng = Rng::new(seed ^ 0x5EED);
+        let wrench: Vec<f64> = (0..6).map(|_| rng.uniform(-5.0, 5.0)).collect();
+        let Inputs {
+            frames,
+            coupling,
+            ov,
+            mut g,
+            x,
+            xd,
+            xdd,
+            ..
+        } = Inputs::new(&r);
+        let qs = coupling.positions(&mut g, &x);
+        let (qd, qdd) = (coupling.rates(&mut g, &xd), coupling.rates(&mut g, &xdd));
+        let motions = joint_motions(&mut g, &frames, &qs);
+        let gravity = parameters::gravity(&mut g, &frames);
+        let floating = frames.base.is_some();
+        let base = base::base_motion(&mut g, floating, &qd[..ov], &qdd[..ov], gravity);
+        let tip = tip_wrench(&mut g, &r, &frames);
+        let bi = frames.base.as_ref();
+        let (v_j, a_j) = (&qd[ov..], &qdd[ov..]);
+        let forms = [
+            rnea::rnea(
+                &mut g,
+                &motions,
+                &base,
+                bi,
+                v_j,
+                a_j,
+                LinkForce::Spatial,
+                Some(&tip),
+            ),
+            rnea::rnea(
+                &mut g,
+                &motions,
+                &base,
+                bi,
+                v_j,
+                a_j,
+                LinkForce::Classical,
+                Some(&tip),
+            ),
+            rnea_classical::rnea_classical(
+                &mut g,
+                &motions,
+                &base,
+                bi,
+                v_j,
+                a_j,
+                Some(&tip),
+                Euler::Vector,
+            ),
+            rnea_classical::rnea_classical(
+                &mut g,
+                &motions,
+                &base,
+                bi,
+                v_j,
+                a_j,
+                Some(&tip),
+                Euler::Tensor,
+            ),
+        ];
+        let at = |roots: &[ExprId]| {
+            g.eval(roots, &|x: Input| {
+                let i = x.index as usize;
+                match x.group {
+                    Q => q[i],
+                    QD => v[i],
+                    QDD => a[i],
+                    _ => wrench[i],
+                }
+            })
+        };
+        let want = at(&forms[0]);
+        let scale = max_abs(&want) + 1.0;
+        for (k, form) in forms.iter().enumerate().skip(1) {
+            let got = at(form);
+            assert!(
+                max_err(&got, &want) <= 1e-12 * scale,
+                "seed {seed}, form {k}: off by {:e} (scale {scale:e})",
+                max_err(&got, &want)
+            );
+        }
+    }
+}
