@@ -17,10 +17,13 @@
 //! LDLᵀ solve grows as n³ (the mass matrix as n²) but is cheap on short chains with general
 //! geometry, where the articulated inertias' 21 entries cost more to move from frame to
 //! frame; the articulated-body algorithm grows as n and needs one division fewer (the last
-//! `D_n` is a constant). At the time of writing the articulated-body algorithm wins on the
-//! two-joint pendulum and 12-joint random chains, the factorisation on the UR5, the Panda
-//! and rand7.
-//! Likewise each Newton–Euler expansion keeps the cheapest of three equal forms.
+//! `D_n` is a constant). At the time of writing the articulated-body algorithm wins on
+//! 12-joint random chains, the factorisation on the two-joint pendulum (since the bias's
+//! Newton–Euler took the tensor form of [`rnea_classical::Euler`]), the UR5, the Panda and
+//! rand7.
+//! Likewise each Newton–Euler expansion keeps the cheapest of four equal forms (the link
+//! wrench spatial or classical, [`rnea::LinkForce`]; classical accelerations with cross
+//! products or through each body's tensor `W`, [`rnea_classical::Euler`]).
 //!
 //! Before the routes are compared, the graph is rebuilt by [`ExprGraph::prune_zeros`] from
 //! the outputs and both forward-dynamics candidates: nodes that are identically zero up to
