@@ -234,6 +234,9 @@ fn aba_matches_ldlt_on_random_chains() {
     println!("ABA vs LDLᵀ on 200 random chains: worst relative error {worst:e}");
 }
 
+/// The cheaper route by count on a chain; where a joint carries two or more branches the
+/// factorisation only where it needs at most nine tenths of the articulated-body algorithm's
+/// operations (TALOS' upper body: 2 % fewer, and the articulated-body algorithm kept).
 #[test]
 fn expand_keeps_the_cheaper_forward_dynamics_route() {
     use dynamics_model::random::{random_chain, ChainSpec};
@@ -252,6 +255,11 @@ fn expand_keeps_the_cheaper_forward_dynamics_route() {
                 prismatic: 0.3,
             },
         ),
+        dynamics_model::load_file(
+            &data.join("trees/talos_upper_body.urdf"),
+            &LoadOptions::default(),
+        )
+        .expect("talos"),
     ];
     for r in &robots {
         let aba = expand_with_route(r, ForwardRoute::Aba);
@@ -268,13 +276,28 @@ fn expand_keeps_the_cheaper_forward_dynamics_route() {
             a.total(),
             best.forward_route
         );
-        let want = if a.total() < l.total() {
-            ForwardRoute::Aba
+        let parents = r.parents();
+        let branched =
+            (0..parents.len()).any(|i| parents.iter().filter(|p| **p == Some(i)).count() > 1);
+        let share = if branched || r.base.floating {
+            0.9
         } else {
-            ForwardRoute::Ldlt
+            1.0
+        };
+        let (want, total) = if (l.total() as f64) <= share * a.total() as f64 {
+            (ForwardRoute::Ldlt, l.total())
+        } else {
+            (ForwardRoute::Aba, a.total())
         };
         assert_eq!(best.forward_route, want, "{}", r.name);
-        assert_eq!(b.total(), a.total().min(l.total()), "{}", r.name);
+        assert_eq!(b.total(), total, "{}", r.name);
+        if r.name.contains("talos") {
+            assert!(
+                l.total() < a.total() && want == ForwardRoute::Aba,
+                "{}",
+                r.name
+            );
+        }
     }
 }
 
