@@ -73,9 +73,10 @@ fn apply(g: &mut ExprGraph, w: &M3, r: V3) -> V3 {
     std::array::from_fn(|k| g.dot(&w[k], &r))
 }
 
-/// `vee(W J − J Wᵀ)` (any `W + σ 1` gives the same) for the second moment `J = ½ tr(I) 1 − I` of the inertia `i` (entries
-/// `xx, yy, zz, xy, xz, yz`): `I ω̇ + ω × I ω`. Component `a` (with `(b, c)` the next two
-/// axes) is `Σ_k W_ck J_kb − W_bk J_kc`, one sum of six products.
+/// `vee(W J − J Wᵀ)` (any `W + σ 1` gives the same) for the second moment
+/// `J = ½ tr(I) 1 − I` of the inertia `i` (entries `xx, yy, zz, xy, xz, yz`): `I ω̇ + ω × I ω`.
+/// Component `a` (with `(b, c)` the next two axes) is `Σ_k W_ck J_kb − W_bk J_kc`, one sum of
+/// six products.
 fn euler_tensor(g: &mut ExprGraph, w: &M3, i: &[ExprId; 6]) -> V3 {
     let tr = g.sum(&[i[0], i[1], i[2]]);
     let half = g.cmul(0.5, tr);
