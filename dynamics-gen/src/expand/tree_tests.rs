@@ -253,48 +253,13 @@ fn every_newton_euler_form_gives_the_same_forces() {
         let tip = tip_wrench(&mut g, &r, &frames);
         let bi = frames.base.as_ref();
         let (v_j, a_j) = (&qd[ov..], &qdd[ov..]);
-        let forms = [
-            rnea::rnea(
-                &mut g,
-                &motions,
-                &base,
-                bi,
-                v_j,
-                a_j,
-                LinkForce::Spatial,
-                Some(&tip),
-            ),
-            rnea::rnea(
-                &mut g,
-                &motions,
-                &base,
-                bi,
-                v_j,
-                a_j,
-                LinkForce::Classical,
-                Some(&tip),
-            ),
-            rnea_classical::rnea_classical(
-                &mut g,
-                &motions,
-                &base,
-                bi,
-                v_j,
-                a_j,
-                Some(&tip),
-                Euler::Vector,
-            ),
-            rnea_classical::rnea_classical(
-                &mut g,
-                &motions,
-                &base,
-                bi,
-                v_j,
-                a_j,
-                Some(&tip),
-                Euler::Tensor,
-            ),
-        ];
+        let tip = Some(&tip);
+        let mut forms: Vec<Vec<ExprId>> = [LinkForce::Spatial, LinkForce::Classical]
+            .map(|f| rnea::rnea(&mut g, &motions, &base, bi, v_j, a_j, f, tip))
+            .into();
+        forms.extend([Euler::Vector, Euler::Tensor].map(|e| {
+            rnea_classical::rnea_classical(&mut g, &motions, &base, bi, v_j, a_j, tip, e)
+        }));
         let at = |roots: &[ExprId]| {
             g.eval(roots, &|x: Input| {
                 let i = x.index as usize;
