@@ -105,6 +105,13 @@ pub struct JointFrame {
     pub payload: Option<PayloadPose>,
 }
 
+impl JointFrame {
+    /// `−Rᵀ p`: the origin of {J_i} in {J_λ(i)} (the translation of `C_i⁻¹`).
+    pub fn origin_in_parent(&self) -> [f64; 3] {
+        std::array::from_fn(|i| -(0..3).map(|k| self.r[k][i] * self.p[k]).sum::<f64>())
+    }
+}
+
 /// The pose `T_{i,J_i} = (R, p)` of a joint frame in its link's frame: `R` the axes of
 /// {J_i} in {i} (row-major), `p` its origin in {i}.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -220,8 +220,7 @@ fn joint_poses(g: &mut ExprGraph, frames: &JointFrames, q: &[ExprId], runs: bool
         let parent = f.parent.map_or(base, |p| poses[p]);
         // C⁻¹ = (Rᵀ, −Rᵀ p).
         let rt: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| f.r[j][i]));
-        let minus_rt_p: [f64; 3] =
-            std::array::from_fn(|i| -(0..3).map(|k| rt[i][k] * f.p[k]).sum::<f64>());
+        let minus_rt_p = f.origin_in_parent();
         let a = mul_const(g, &parent.r, &rt);
         // The origin `p = p_λ + R_λ (−Rᵀ p_c)`, or, with `−Rᵀ p_c = w + d u` (`u = Rᵀ z` the
         // joint's axis in {J_λ}, `w ⟂ u`), `p = f + d z` from the foot `f = p_λ + R_λ w` of the

@@ -405,6 +405,22 @@ fn finish(
 /// legs off the base, no joint with two children: not affected) with 15 % fewer 14 % faster.
 const TREE_LDLT_SHARE: f64 = 0.9;
 
+/// The share of the articulated-body algorithm's operations at or below which forward
+/// dynamics takes CRBA + LDLᵀ: [`TREE_LDLT_SHARE`] where a joint carries two or more branches
+/// or the base floats, 1 elsewhere.
+fn ldlt_share(robot: &Robot) -> f64 {
+    let parents = robot.parents();
+    let mut children = vec![0usize; parents.len()];
+    for p in parents.into_iter().flatten() {
+        children[p] += 1;
+    }
+    if robot.base.floating || children.iter().any(|&c| c > 1) {
+        TREE_LDLT_SHARE
+    } else {
+        1.0
+    }
+}
+
 /// The cheaper of two equal expansions (ties keep `a`).
 pub(crate) fn cheaper(g: &ExprGraph, a: Vec<ExprId>, b: Vec<ExprId>) -> Vec<ExprId> {
     if g.op_counts(&b).total() < g.op_counts(&a).total() {
@@ -576,18 +592,7 @@ pub(crate) fn expand_routes(robot: &Robot, route: Option<ForwardRoute>, prune: b
     };
     let route = route.unwrap_or_else(|| {
         let (aba, ldlt) = (g.op_counts(&by_aba).total(), g.op_counts(&by_ldlt).total());
-        // Where a joint carries two or more branches, or on a floating base, the
-        // factorisation must need a tenth fewer operations ([`TREE_LDLT_SHARE`]); elsewhere,
-        // no more.
-        let parents = robot.parents();
-        let branched =
-            (0..parents.len()).any(|i| parents.iter().filter(|p| **p == Some(i)).count() > 1);
-        let share = if branched || floating {
-            TREE_LDLT_SHARE
-        } else {
-            1.0
-        };
-        if (ldlt as f64) <= share * aba as f64 {
+        if (ldlt as f64) <= ldlt_share(robot) * aba as f64 {
             ForwardRoute::Ldlt
         } else {
             ForwardRoute::Aba

@@ -155,9 +155,7 @@ pub fn rnea_classical(
         let wd_k = g.rot(&f.r, wd);
         let a_k = if tensor_form {
             // The origin of {J_i} in {J_λ}: r' = −Rᵀ p; moved there with W_λ, then rotated.
-            let r: [f64; 3] =
-                std::array::from_fn(|k| -(0..3).map(|l| f.r[l][k] * f.p[l]).sum::<f64>());
-            let r = g.const3(r);
+            let r = g.const3(f.origin_in_parent());
             let wr = apply(g, &parent_tensor, r);
             let t = g.add3(a, wr);
             g.rot(&f.r, t)
