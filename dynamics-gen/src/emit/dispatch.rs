@@ -2241,13 +2241,13 @@ mod tests {
         ));
         // Its gravity batch is below both bounds: the vectoriser's code, and no token.
         assert!(!solo.contains("gravity_batch_body_avx"));
-        // The UR5's inverse dynamics (302 operations, a vector) is above `VECTOR_MIN_OPS` and
+        // The UR5's inverse dynamics (272 operations, a vector) is above `VECTOR_MIN_OPS` and
         // below `MIN_OPS`: bodies of instructions in both copies. Its gravity (too small) and
         // mass matrix (a matrix) keep the vectoriser's code in both copies.
         let ur5 = crate::Builder::new("ur5").generate().expect("generates");
         assert!(ur5.contains("unsafe fn inverse_dynamics_batch_body_avx2("));
         assert!(ur5.contains("unsafe fn inverse_dynamics_batch_body_avx512("));
-        assert!(ur5.contains("For a body of 302 operations with a vector result"));
+        assert!(ur5.contains("For a body of 272 operations with a vector result"));
         assert!(!ur5.contains("mass_matrix_batch_body_avx"));
         assert!(!ur5.contains("gravity_batch_body_avx"));
         // Their kernels leave the far angles to the single-state function.

@@ -28,11 +28,14 @@
 //!   ω̇ × r + ω × (ω × r) = W r                       (9 products by a constant r, not 15)
 //!   a_K = R (a_{i−1} + W_{i−1} r'),  r' = −Rᵀ p       (the child's origin in {J_{i−1}})
 //!   f_i = m_i a_i + W_i h_i
-//!   I ω̇ + ω × I ω = vee(W J − J Wᵀ),  J = ½ tr(I) 1 − I   (the second moment; 18 products, not 24)
+//!   (I ω̇ + ω × I ω)_a = I_aa ω̇_a − I_ab W_ca + I_ac W_ba + (I_cc − I_bb) ω_b ω_c
+//!                       + I_bc (ω_b² − ω_c²)          ((a, b, c) cyclic; 15 products, not 24)
 //! ```
 //!
-//! (`[Iω̇]× = [ω̇]× J + J [ω̇]×` for a symmetric `J`, and `ω ωᵀ J − J ω ωᵀ = [Jω × ω]×`, with
-//! `ω × Iω = Jω × ω`.)
+//! (Euler's equations for a full inertia: `W_ca = ω_c ω_a − ω̇_b` and `W_ba = ω_b ω_a + ω̇_c`
+//! gather `I ω̇`'s off-diagonal terms with those of `ω × I ω`, whose other terms are the last
+//! two; with the masses regrouped, `I_bb` is often zero and the fourth coefficient a single
+//! constant.)
 
 use super::frames::BodyInertia;
 use super::kinematics::M3;
@@ -73,28 +76,30 @@ fn apply(g: &mut ExprGraph, w: &M3, r: V3) -> V3 {
     std::array::from_fn(|k| g.dot(&w[k], &r))
 }
 
-/// `vee(W J − J Wᵀ)` (any `W + σ 1` gives the same) for the second moment
-/// `J = ½ tr(I) 1 − I` of the inertia `i` (entries `xx, yy, zz, xy, xz, yz`): `I ω̇ + ω × I ω`.
-/// Component `a` (with `(b, c)` the next two axes) is `Σ_k W_ck J_kb − W_bk J_kc`, one sum of
-/// six products.
-fn euler_tensor(g: &mut ExprGraph, w: &M3, i: &[ExprId; 6]) -> V3 {
-    let tr = g.sum(&[i[0], i[1], i[2]]);
-    let half = g.cmul(0.5, tr);
-    let diag: V3 = std::array::from_fn(|k| g.sub(half, i[k]));
-    let (xy, xz, yz) = (g.neg(i[3]), g.neg(i[4]), g.neg(i[5]));
-    let j = [[diag[0], xy, xz], [xy, diag[1], yz], [xz, yz, diag[2]]];
+/// `I ω̇ + ω × I ω` through the tensor `w` = `W` of the body's `ω` (`omega`) and `ω̇` (`wd`),
+/// for the inertia `i` (entries `xx, yy, zz, xy, xz, yz`): component `a` (with `(b, c)` the
+/// next two axes) is
+///
+/// ```text
+///   I_aa ω̇_a − I_ab W_ca + I_ac W_ba + (I_cc − I_bb) ω_b ω_c + I_bc (ω_b² − ω_c²)
+/// ```
+///
+/// (`W_ca = ω_c ω_a − ω̇_b`, `W_ba = ω_b ω_a + ω̇_c`): five products where the cross
+/// products take eight, each off-diagonal entry of `W` read once.
+fn euler_tensor(g: &mut ExprGraph, w: &M3, omega: V3, wd: V3, i: &[ExprId; 6]) -> V3 {
+    let off = |a: usize, b: usize| i[2 + a + b];
+    let product = |g: &mut ExprGraph, a: usize, b: usize| g.mul(omega[a.min(b)], omega[a.max(b)]);
+    let sq: V3 = std::array::from_fn(|k| product(g, k, k));
     std::array::from_fn(|a| {
         let (b, c) = ((a + 1) % 3, (a + 2) % 3);
-        let lhs = [w[c][0], w[c][1], w[c][2], w[b][0], w[b][1], w[b][2]];
-        let rhs = [
-            j[0][b],
-            j[1][b],
-            j[2][b],
-            g.neg(j[0][c]),
-            g.neg(j[1][c]),
-            g.neg(j[2][c]),
-        ];
-        g.dot(&lhs, &rhs)
+        let bc = product(g, b, c);
+        let squares = g.sub(sq[b], sq[c]);
+        let moments = g.sub(i[c], i[b]);
+        let ab = g.neg(off(a, b));
+        g.dot(
+            &[i[a], ab, off(a, c), moments, off(b, c)],
+            &[wd[a], w[c][a], w[b][a], bc, squares],
+        )
     })
 }
 
@@ -214,13 +219,7 @@ pub fn rnea_classical(
                 Some(t) => t,
                 None => tensor(g, w, wd),
             };
-            // The Euler terms read `W + |ω|² 1` (diagonal `ω_k²`): the shift commutes with
-            // `J` and drops out, and the squares are ready before the diagonal's sums.
-            let mut shifted = t;
-            for (k, row) in shifted.iter_mut().enumerate() {
-                row[k] = g.mul(w[k], w[k]);
-            }
-            let n1 = euler_tensor(g, &shifted, &gi.i);
+            let n1 = euler_tensor(g, &t, w, wd, &gi.i);
             let wh = apply(g, &t, gi.h);
             (t, n1, g.add3(ma, wh))
         } else {
