@@ -269,74 +269,34 @@ fn sym(i: &[ExprId; 6]) -> [[ExprId; 3]; 3] {
     [[i[0], i[3], i[4]], [i[3], i[1], i[5]], [i[4], i[5], i[2]]]
 }
 
-/// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old).
-pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
-    let h = g.rot_t(r, ib.h);
-    let s = sym(&ib.i);
-    // A = I R (columns), then I' = Rᵀ A.
-    let mut a = [[ib.m; 3]; 3];
-    for row in 0..3 {
-        for col in 0..3 {
-            let terms = [
-                g.cmul(r[0][col], s[row][0]),
-                g.cmul(r[1][col], s[row][1]),
-                g.cmul(r[2][col], s[row][2]),
-            ];
-            a[row][col] = g.sum(&terms);
-        }
-    }
-    let mut out = ib.i;
-    let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
-    for (k, &(x, y)) in idx.iter().enumerate() {
-        let terms = [
-            g.cmul(r[0][x], a[0][y]),
-            g.cmul(r[1][x], a[1][y]),
-            g.cmul(r[2][x], a[2][y]),
-        ];
-        out[k] = g.sum(&terms);
-    }
-    Inertia { m: ib.m, h, i: out }
+/// The entries `xx, yy, zz, xy, xz, yz` of a symmetric 3×3 (the inverse of [`sym`]).
+fn unsym(m: &[[ExprId; 3]; 3]) -> [ExprId; 6] {
+    [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]]
 }
 
-/// The inertia in a frame rotated by `Rot_z(−θ)` about z: `I' = R_z(θ) I R_z(θ)ᵀ`,
-/// `h' = R_z(θ) h`, written with the double-angle products to share work.
-fn rotate_inertia_z(g: &mut ExprGraph, s: ExprId, c: ExprId, ib: &Inertia) -> Inertia {
-    let h = rot_z(g, s, c, ib.h);
-    let [ixx, iyy, izz, ixy, ixz, iyz] = ib.i;
-    // xz/yz rotate like a vector.
-    let ixz2 = {
-        let a = g.mul(c, ixz);
-        let b = g.mul(s, iyz);
-        g.sub(a, b)
-    };
-    let iyz2 = {
-        let a = g.mul(s, ixz);
-        let b = g.mul(c, iyz);
-        g.add(a, b)
-    };
-    // The xy block: with d = (ixx − iyy)/2, a = (ixx + iyy)/2,
-    // ixx' = a + d cos2θ − ixy sin2θ, iyy' = a − d cos2θ + ixy sin2θ, ixy' = d sin2θ + ixy cos2θ.
-    let cc = g.mul(c, c);
-    let ss = g.mul(s, s);
-    let sc = g.mul(s, c);
-    let cos2 = g.sub(cc, ss);
-    let sin2 = g.cmul(2.0, sc);
-    let sum = g.add(ixx, iyy);
-    let a = g.cmul(0.5, sum);
-    let diff = g.sub(ixx, iyy);
-    let d = g.cmul(0.5, diff);
-    let dc = g.mul(d, cos2);
-    let xs = g.mul(ixy, sin2);
-    let u = g.sub(dc, xs);
-    let ixx2 = g.add(a, u);
-    let iyy2 = g.sub(a, u);
-    let ds = g.mul(d, sin2);
-    let xc = g.mul(ixy, cos2);
-    let ixy2 = g.add(ds, xc);
+/// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old);
+/// a DH twist (a turn about one coordinate axis) by the double angle, as the articulated
+/// inertias ([`rot_const_congruence`]): the CRBA's composite inertias took eighteen products
+/// a joint there before, eight now.
+pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
+    let h = g.rot_t(r, ib.h);
+    let i = rot_const_congruence(g, r, &sym(&ib.i), true);
     Inertia {
         m: ib.m,
         h,
-        i: [ixx2, iyy2, izz, ixy2, ixz2, iyz2],
+        i: unsym(&i),
+    }
+}
+
+/// The inertia in a frame rotated by `Rot_z(−θ)` about z: `I' = R_z(θ) I R_z(θ)ᵀ`,
+/// `h' = R_z(θ) h`, through [`rot_axis_congruence`] (the double-angle products).
+fn rotate_inertia_z(g: &mut ExprGraph, s: ExprId, c: ExprId, ib: &Inertia) -> Inertia {
+    let h = rot_z(g, s, c, ib.h);
+    let i = rot_axis_congruence(g, 2, s, c, &sym(&ib.i), true);
+    Inertia {
+        m: ib.m,
+        h,
+        i: unsym(&i),
     }
 }
 
@@ -462,7 +422,8 @@ fn mat_entry(g: &mut ExprGraph, a: &M3, b: &M3, i: usize, j: usize) -> ExprId {
 /// m_xy' = (m_xx − m_yy) s c + m_xy c² − m_yx s²,   m_yx' = (m_xx − m_yy) s c + m_yx c² − m_xy s²
 /// ```
 ///
-/// (for symmetric `M`: `m_xy' = m_yx' = (m_xx − m_yy) s c + m_xy (c² − s²)`).
+/// (for symmetric `M`: `m_xy' = m_yx' = m_xy + (m_xx − m_yy) s c − (m_xy + m_yx) s²`, the
+/// second product shared with `t`'s operand and no `c²`).
 fn rot_axis_congruence(
     g: &mut ExprGraph,
     k: usize,
@@ -485,7 +446,6 @@ fn rot_axis_congruence(
     } else {
         turn(g, m[z][x], m[z][y])
     };
-    let cc = g.mul(c, c);
     let ss = g.mul(s, s);
     let sc = g.mul(s, c);
     let diff = g.sub(m[x][x], m[y][y]);
@@ -497,11 +457,13 @@ fn rot_axis_congruence(
     let yy = g.add(m[y][y], t);
     let dsc = g.mul(diff, sc);
     let (xy, yx) = if symmetric {
-        let cos2 = g.sub(cc, ss);
-        let o = g.mul(m[x][y], cos2);
-        let xy = g.add(dsc, o);
+        // m_xy (c² − s²) = m_xy − (2 m_xy) s², with 2 m_xy = `off`: no c².
+        let o = g.mul(off, ss);
+        let d = g.sub(dsc, o);
+        let xy = g.add(m[x][y], d);
         (xy, xy)
     } else {
+        let cc = g.mul(c, c);
         let a = g.mul(m[x][y], cc);
         let b = g.mul(m[y][x], ss);
         let ab = g.sub(a, b);
