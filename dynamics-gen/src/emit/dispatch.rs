@@ -2237,7 +2237,7 @@ mod tests {
         .expect("generates");
         assert!(!plain.contains("_avx512") && !plain.contains("_avx2"));
         assert!(plain.contains(
-            "The code of `forward_dynamics` called once per state: its body (2978 operations)"
+            "The code of `forward_dynamics` called once per state: its body (2970 operations)"
         ));
         // Its gravity batch is below both bounds: the vectoriser's code, and no token.
         assert!(!solo.contains("gravity_batch_body_avx"));

@@ -280,7 +280,7 @@ fn unsym(m: &[[ExprId; 3]; 3]) -> [ExprId; 6] {
 /// a joint there before, eight now.
 pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
     let h = g.rot_t(r, ib.h);
-    let i = rot_const_congruence(g, r, &sym(&ib.i), true);
+    let i = rot_const_congruence(g, r, &sym(&ib.i), Block::Symmetric);
     Inertia {
         m: ib.m,
         h,
@@ -292,7 +292,7 @@ pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &In
 /// `h' = R_z(θ) h`, through [`rot_axis_congruence`] (the double-angle products).
 fn rotate_inertia_z(g: &mut ExprGraph, s: ExprId, c: ExprId, ib: &Inertia) -> Inertia {
     let h = rot_z(g, s, c, ib.h);
-    let i = rot_axis_congruence(g, 2, s, c, &sym(&ib.i), true);
+    let i = rot_axis_congruence(g, 2, s, c, &sym(&ib.i), Block::SymmetricAlone);
     Inertia {
         m: ib.m,
         h,
@@ -413,6 +413,17 @@ fn mat_entry(g: &mut ExprGraph, a: &M3, b: &M3, i: usize, j: usize) -> ExprId {
     g.dot(&a[i], &col)
 }
 
+/// The shape of a 3×3 block a congruence turns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Block {
+    /// Any 3×3.
+    General,
+    /// Symmetric, turned beside a general block of the same turn (which forms `c²`).
+    Symmetric,
+    /// Symmetric, the turn's only block (a rigid inertia's: no `c²` formed for it).
+    SymmetricAlone,
+}
+
 /// `Q M Qᵀ` with `Q` the rotation by θ about coordinate axis `k` (`sin θ = s`,
 /// `cos θ = c`). With `(x, y, z)` the axes `(k+1, k+2, k)` cyclically, `Q` turns the xy plane
 /// by `[[c, −s], [s, c]]`: the z row and column turn like vectors, and the xy block is
@@ -422,16 +433,18 @@ fn mat_entry(g: &mut ExprGraph, a: &M3, b: &M3, i: usize, j: usize) -> ExprId {
 /// m_xy' = (m_xx − m_yy) s c + m_xy c² − m_yx s²,   m_yx' = (m_xx − m_yy) s c + m_yx c² − m_xy s²
 /// ```
 ///
-/// (for symmetric `M`: `m_xy' = m_yx' = m_xy + (m_xx − m_yy) s c − (m_xy + m_yx) s²`, the
-/// second product shared with `t`'s operand and no `c²`).
+/// (for symmetric `M`: `m_xy' = m_yx' = (m_xx − m_yy) s c + m_xy (c² − s²)`, or, where no
+/// other block of the turn needs `c²` ([`Block::SymmetricAlone`]), `m_xy + (m_xx − m_yy) s c −
+/// (m_xy + m_yx) s²`: one product fewer, one addition more).
 fn rot_axis_congruence(
     g: &mut ExprGraph,
     k: usize,
     s: ExprId,
     c: ExprId,
     m: &M3,
-    symmetric: bool,
+    block: Block,
 ) -> M3 {
+    let symmetric = block != Block::General;
     let (x, y, z) = ((k + 1) % 3, (k + 2) % 3, k);
     let turn = |g: &mut ExprGraph, u: ExprId, w: ExprId| {
         let a = g.mul(c, u);
@@ -456,11 +469,17 @@ fn rot_axis_congruence(
     let xx = g.sub(m[x][x], t);
     let yy = g.add(m[y][y], t);
     let dsc = g.mul(diff, sc);
-    let (xy, yx) = if symmetric {
+    let (xy, yx) = if block == Block::SymmetricAlone {
         // m_xy (c² − s²) = m_xy − (2 m_xy) s², with 2 m_xy = `off`: no c².
         let o = g.mul(off, ss);
         let d = g.sub(dsc, o);
         let xy = g.add(m[x][y], d);
+        (xy, xy)
+    } else if symmetric {
+        let cc = g.mul(c, c);
+        let cos2 = g.sub(cc, ss);
+        let o = g.mul(m[x][y], cos2);
+        let xy = g.add(dsc, o);
         (xy, xy)
     } else {
         let cc = g.mul(c, c);
@@ -488,7 +507,7 @@ fn rot_axis_congruence(
 /// `Rᵀ M R` for a constant rotation `R`. A rotation about a coordinate axis by an angle
 /// that is not a multiple of π/2 (the DH `Rot_x(−α)`) goes through [`rot_axis_congruence`];
 /// any other through two products, where the zeros of a signed permutation fold away.
-fn rot_const_congruence(g: &mut ExprGraph, r: &[[f64; 3]; 3], m: &M3, symmetric: bool) -> M3 {
+fn rot_const_congruence(g: &mut ExprGraph, r: &[[f64; 3]; 3], m: &M3, block: Block) -> M3 {
     for k in 0..3 {
         let (x, y) = ((k + 1) % 3, (k + 2) % 3);
         let axis_fixed = (0..3).all(|j| {
@@ -499,13 +518,13 @@ fn rot_const_congruence(g: &mut ExprGraph, r: &[[f64; 3]; 3], m: &M3, symmetric:
         let (c, s) = (r[x][x], r[x][y]);
         if axis_fixed && r[y][y] == c && r[y][x] == -s && s != 0.0 && c != 0.0 {
             let (s, c) = (g.constant(s), g.constant(c));
-            return rot_axis_congruence(g, k, s, c, m, symmetric);
+            return rot_axis_congruence(g, k, s, c, m, block);
         }
     }
     let rc = gen3(|i, j| g.constant(r[i][j]));
     let rt = gen3(|i, j| rc[j][i]);
     let mr = gen3(|i, j| mat_entry(g, m, &rc, i, j));
-    if symmetric {
+    if block != Block::General {
         sym3(|i, j| mat_entry(g, &rt, &mr, i, j))
     } else {
         gen3(|i, j| mat_entry(g, &rt, &mr, i, j))
@@ -643,9 +662,9 @@ impl JointMotion<'_> {
         let f = self.frame;
         let mid = match f.kind {
             JointKind::Revolute => SymInertia {
-                a: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.a, true),
-                b: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.b, false),
-                c: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.c, true),
+                a: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.a, Block::Symmetric),
+                b: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.b, Block::General),
+                c: rot_axis_congruence(g, 2, self.sin, self.cos, &ia.c, Block::Symmetric),
             },
             JointKind::Prismatic => {
                 let zero = g.zero();
@@ -656,9 +675,9 @@ impl JointMotion<'_> {
         let p = g.const3(f.p);
         let shifted = mid.shift(g, p, form);
         SymInertia {
-            a: rot_const_congruence(g, &f.r, &shifted.a, true),
-            b: rot_const_congruence(g, &f.r, &shifted.b, false),
-            c: rot_const_congruence(g, &f.r, &shifted.c, true),
+            a: rot_const_congruence(g, &f.r, &shifted.a, Block::Symmetric),
+            b: rot_const_congruence(g, &f.r, &shifted.b, Block::General),
+            c: rot_const_congruence(g, &f.r, &shifted.c, Block::Symmetric),
         }
     }
 }
