@@ -274,10 +274,9 @@ fn unsym(m: &[[ExprId; 3]; 3]) -> [ExprId; 6] {
     [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]]
 }
 
-/// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old);
-/// a DH twist (a turn about one coordinate axis) by the double angle, as the articulated
-/// inertias ([`rot_const_congruence`]): the CRBA's composite inertias took eighteen products
-/// a joint there before, eight now.
+/// `I' = Rᵀ I R`, `h' = Rᵀ h` for a constant rotation `R` (the new frame's axes in the old),
+/// as the articulated inertias ([`rot_const_congruence`]): a DH twist (a turn about one
+/// coordinate axis) by the double angle, eight products where the general form takes eighteen.
 pub(crate) fn rotate_inertia_const(g: &mut ExprGraph, r: &[[f64; 3]; 3], ib: &Inertia) -> Inertia {
     let h = g.rot_t(r, ib.h);
     let i = rot_const_congruence(g, r, &sym(&ib.i), Block::Symmetric);
