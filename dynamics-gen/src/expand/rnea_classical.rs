@@ -88,11 +88,11 @@ fn apply(g: &mut ExprGraph, w: &M3, r: V3) -> V3 {
 /// products take eight, each off-diagonal entry of `W` read once.
 fn euler_tensor(g: &mut ExprGraph, w: &M3, omega: V3, wd: V3, i: &[ExprId; 6]) -> V3 {
     let off = |a: usize, b: usize| i[2 + a + b];
-    let product = |g: &mut ExprGraph, a: usize, b: usize| g.mul(omega[a.min(b)], omega[a.max(b)]);
-    let sq: V3 = std::array::from_fn(|k| product(g, k, k));
+    // `mul` orders its operands, so these are the nodes `tensor` built.
+    let sq: V3 = std::array::from_fn(|k| g.mul(omega[k], omega[k]));
     std::array::from_fn(|a| {
         let (b, c) = ((a + 1) % 3, (a + 2) % 3);
-        let bc = product(g, b, c);
+        let bc = g.mul(omega[b], omega[c]);
         let squares = g.sub(sq[b], sq[c]);
         let moments = g.sub(i[c], i[b]);
         let ab = g.neg(off(a, b));
