@@ -147,6 +147,26 @@ fn dispatch_cond() -> TokenStream {
     quote!(all(target_arch = "x86_64", not(target_feature = "avx512f")))
 }
 
+/// The predicate of x86-64 code compiled with AVX2 and FMA (`-C target-cpu=native` on most
+/// x86-64 CPUs of the last decade, `x86-64-v3`, `x86-64-v4`): there the portable body of a
+/// single-state function is the copies' fused body (`WIDE`), its far angles left to `X_far`
+/// as in the copies.
+fn wide_native_cond() -> TokenStream {
+    quote!(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))
+}
+
+/// The predicate of the code that may run a `WIDE` body, and so of the intrinsics in the
+/// vector helpers and of the `X_far` functions: the dispatch's (the copies) and
+/// [`wide_native_cond`]'s (the portable body).
+fn wide_cond() -> TokenStream {
+    let (dispatch, native) = (dispatch_cond(), wide_native_cond());
+    quote!(any(#dispatch, #native))
+}
+
 /// The predicate of code compiled with the features of the AVX-512 copy (`-C
 /// target-cpu=native` on such a CPU, `x86-64-v4`): no dispatch there, but a batch function
 /// with an AVX-512 body of instructions runs it ([`native_call`]).
@@ -411,7 +431,8 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
             }
         }
     });
-    let vector = vector_helpers(&cfg, &used.vector, scalar);
+    let wide = wide_cond();
+    let vector = vector_helpers(&quote!(#[cfg(#wide)]), &used.vector, scalar);
     let align_frame = align_frame_helper(used);
     quote! {
         #mul_add
@@ -817,7 +838,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // `::<B, …>` after a generic function's name (the batch functions'), nothing otherwise.
     let turbofish = (!generic_names.is_empty()).then(|| quote!(::<#(#generic_names),*>));
     // SAFETY (in the generated code): reached only from the AVX-512 and AVX2 copies, which run
-    // only on CPUs with AVX2 and FMA, the features `X_far` is compiled for.
+    // only on CPUs with AVX2 and FMA, and from code compiled with both: the features `X_far` is
+    // compiled for.
     // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
     // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
     // `X_far` must get the originals.
@@ -884,25 +906,40 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // `X_far` alone, whose kernel keeps the fallback in line.
     let far_generic = has_far.then(|| quote!(, const FAR: bool));
     let not_far = has_far.then(|| quote!(, false));
+    // Compiled with AVX2 and FMA, a single-state function's portable body is the copies'
+    // (`WIDE`: packs as vector instructions, the sines on all lanes, far angles out of line);
+    // a batch function's stays the vectoriser's body, its lanes run as `native_call` says.
+    let wide_native = wide_native_cond();
+    let portable_wide = if is_batch {
+        quote!(false)
+    } else {
+        quote!({ cfg!(#wide_native) })
+    };
     let portable_body =
+        quote!(self.#body_fn::<#portable_wide #not_far #(, #generic_names)*>(#(#arg_names),*));
+    // The default x86-64 target's (no AVX2 there).
+    let sse2_body =
         quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
             " [`Self::{name}`] where an angle lies beyond the sines' bound (10⁶ rad for `f64`, \
-             10⁴ for `f32`), which the AVX-512 and AVX2 copies leave to it: the same fused body \
-             with the kernel's fallback (the platform's sines and cosines for those angles) in \
+             10⁴ for `f32`), which the AVX-512 and AVX2 copies (and the portable body, where \
+             the crate is compiled with AVX2 and FMA) leave to it: the same fused body with \
+             the kernel's fallback (the platform's sines and cosines for those angles) in \
              line, compiled for AVX2 and FMA, so the same bits as the copies. Cold and out of \
              line, so that the copies make no call of their own."
         );
-        // Where no copy runs, nothing calls it: `#[inline(always)]`, so that it is compiled
-        // only where called (nowhere), not as one more portable body (a `#[inline(never)]` one
-        // was: 22,920 of the UR5's 23,463 instructions in a library built for `x86-64-v4`).
-        let other = " Where no copy runs: never called (the portable body keeps its fallback), \
-                     and so never compiled.";
+        // Where no `WIDE` body runs, nothing calls it: `#[inline(always)]`, so that it is
+        // compiled only where called (nowhere), not as one more portable body (a
+        // `#[inline(never)]` one was: 22,920 of the UR5's 23,463 instructions in a library
+        // built for `x86-64-v4`, before such a library's portable body became `WIDE`).
+        let other = " Where no copy runs and the crate lacks AVX2 or FMA: never called (the \
+                     portable body keeps its fallback), and so never compiled.";
+        let wide = wide_cond();
         quote! {
             #[doc = #doc]
-            #cfg
+            #[cfg(#wide)]
             #[target_feature(enable = "avx2,fma")]
             #[cold]
             #[allow(unsafe_code, improper_ctypes_definitions)]
@@ -910,7 +947,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
                 self.#body_fn::<true, true #(, #generic_names)*>(#(#arg_names),*)
             }
             #[doc = #other]
-            #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx512f"))))]
+            #[cfg(not(#wide))]
             #[inline(always)]
             #[allow(unsafe_code, improper_ctypes_definitions)]
             unsafe extern "C" fn #far #fast_generics (#args) #ret {
@@ -919,25 +956,37 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         }
     });
     let doc = format!(" [`Self::{name}`] where no copy runs: the body compiled for the target.");
-    let out_of_line_portable = quote! {
-        #[inline(never)]
-        #[allow(improper_ctypes_definitions)]
-        extern "C" fn #portable #fast_generics (#args) #ret {
-            #portable_body
+    let wide_doc = if is_batch {
+        doc.clone()
+    } else {
+        format!(
+            " [`Self::{name}`] where no copy runs: the body compiled for the target, the \
+             copies' fused one (`WIDE`) where the target has AVX2 and FMA."
+        )
+    };
+    let out_of_line_portable = |body: &TokenStream| {
+        quote! {
+            #[inline(never)]
+            #[allow(improper_ctypes_definitions)]
+            extern "C" fn #portable #fast_generics (#args) #ret {
+                #body
+            }
         }
     };
     let portable = if out_of_line {
+        let item = out_of_line_portable(&portable_body);
         quote! {
-            #[doc = #doc]
-            #out_of_line_portable
+            #[doc = #wide_doc]
+            #item
         }
     } else {
         let cond = avx2_copy_cond();
+        let item = out_of_line_portable(&sse2_body);
         quote! {
             #[doc = #doc]
             #[cfg(#cond)]
-            #out_of_line_portable
-            #[doc = #doc]
+            #item
+            #[doc = #wide_doc]
             #[cfg(not(#cond))]
             #[inline(always)]
             fn #portable #fast_generics (#args) #ret {
@@ -1664,9 +1713,9 @@ fn vector_helpers(
                         use ::core::arch::x86_64::*;
                         use ::core::mem::transmute;
                         // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
-                        // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA;
-                        // `[T; 4]` and the register type are the same 32 (`f64`) or 16 (`f32`)
-                        // bytes.
+                        // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA,
+                        // and in code compiled with both; `[T; 4]` and the register type are
+                        // the same 32 (`f64`) or 16 (`f32`) bytes.
                         return unsafe { transmute::<#reg, [#t; 4]>(#op) };
                     }
                 }
@@ -2320,10 +2369,23 @@ mod tests {
             "#[target_feature(enable=\"avx2,fma\")]#[cold]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_far("
         ));
         assert!(flat.contains("self.inverse_dynamics_body::<true,true>(q,qd,qdd)"));
-        // Where no copy runs nothing calls it: inlined (nowhere), so never compiled.
+        // Where no `WIDE` body runs nothing calls it: inlined (nowhere), so never compiled.
+        let wide = "any(all(target_arch=\"x86_64\",not(target_feature=\"avx512f\")),all(target_arch=\"x86_64\",target_feature=\"avx2\",target_feature=\"fma\"))";
+        assert!(flat.contains(&format!(
+            "#[cfg(not({wide}))]#[inline(always)]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_far("
+        )));
+        assert!(flat.contains(&format!(
+            "#[cfg({wide})]#[target_feature(enable=\"avx2,fma\")]#[cold]"
+        )));
+        // Compiled with AVX2 and FMA, the portable body is the copies' (`WIDE`), its far
+        // angles left to the same `inverse_dynamics_far`; on the default target, not.
+        assert!(
+            flat.contains("{self.inverse_dynamics_body::<false,false>(q,qd,qdd)}"),
+            "the default target's portable body"
+        );
         assert!(flat.contains(
-            "#[cfg(not(all(target_arch=\"x86_64\",not(target_feature=\"avx512f\"))))]#[inline(always)]#[allow(unsafe_code,improper_ctypes_definitions)]unsafeextern\"C\"fninverse_dynamics_far("
-        ));
+            "self.inverse_dynamics_body::<{cfg!(all(target_arch=\"x86_64\",target_feature=\"avx2\",target_feature=\"fma\"))},false,>(q,qd,qdd)"
+        ), "the portable body compiled with AVX2 and FMA");
         let call = &call[..call.find("{::core::option").expect("the match")];
         assert!(
             call.contains(">(&q.data.0[0],|joints|[joints[1],"),
