@@ -918,8 +918,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let portable_body =
         quote!(self.#body_fn::<#portable_wide #not_far #(, #generic_names)*>(#(#arg_names),*));
     // The default x86-64 target's (no AVX2 there).
-    let sse2_body =
-        quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
+    let sse2_body = quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
     let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
