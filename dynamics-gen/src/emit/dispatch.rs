@@ -38,7 +38,7 @@
 //! #[cfg(the AVX2 copy's cfg)] #[inline(never)]
 //! extern "C" fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
 //! #[cfg(not(the AVX2 copy's cfg))] #[inline(always)]
-//! fn f_portable(&self, args) -> R { self.f_body::<false>(args) }
+//! fn f_portable(&self, args) -> R { self.f_body::<{ cfg!(AVX2 and FMA) }>(args) }
 //! #[inline(always)] fn f_body<const WIDE: bool>(&self, args) -> R { the body }
 //! ```
 //!
@@ -48,6 +48,16 @@
 //! compiling the whole body again (the project's test binaries did, once for each). Where the
 //! crate is compiled with AVX2 and FMA or for another architecture, `f_portable` is the code
 //! that runs, and it is inlined into the wrapper as the body was before there was a dispatch.
+//! Compiled with AVX2 and FMA (`-C target-cpu=native`, `x86-64-v3`, `x86-64-v4`), a
+//! single-state function's `f_portable` is the copies' body, `WIDE` (its far angles left to
+//! `f_far`, below, as in the copies): the `WIDE = false` body's packs of four are arrays of
+//! scalars, which the optimiser left scalar there, and its sines' fallback is a call in line.
+//! Measured old against new, one binary each (2026-12-06, Emerald Rapids): G1 (floating) built
+//! native, mass matrix −26 and −34 %, forward dynamics −32 and −30 %, inverse dynamics −32 and
+//! −18 %; built for `x86-64-v3`, −44 and −41 %, −31 and −31 %, −45 and −50 %; the same results
+//! bit for bit (with FMA in the target, the `WIDE = false` body fuses the same operations).
+//! A batch function's `f_portable` stays the vectoriser's body (its copies' bodies of
+//! instructions run there, [`native_call`]).
 //!
 //! `f_body` is inlined into all three, so it is compiled once for the crate's target, once for
 //! AVX-512 and once for AVX2: in the last two `Self::mul_add_with::<true>` is `f64::mul_add`,
@@ -101,7 +111,8 @@
 //! `f_far` is `f_body::<true, true>`, whose kernel keeps the fallback in line, compiled for
 //! AVX2 and FMA, cold and out of line: the copies' fused operations, so the same bits as they
 //! would have given, and a batch lane still equals the single call. Where no copy runs, `f_far`
-//! is never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03),
+//! is what the portable body calls where that is `WIDE` (compiled with AVX2 and FMA), and
+//! elsewhere never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03),
 //! old and new code in one binary: G1's inverse dynamics −10 and −12 %, the UR5's and rand7's
 //! functions −1 to −11 %, mass matrices unchanged; the UR5's generated library +21 %
 //! instructions (a fourth body per function).
@@ -882,7 +893,8 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     );
     let body_doc = format!(
         " The body of [`Self::{name}`]; `WIDE`: fused multiply-adds, and the sines and cosines \
-         on the whole of the copy's registers (the AVX-512 and AVX2 copies)."
+         on the whole of the copy's registers (the AVX-512 and AVX2 copies, and the portable \
+         body where the target has AVX2 and FMA)."
     );
     let fast_generics = (!generic_names.is_empty()).then(|| quote!(<#generics>));
     let const_generics = generics.clone();
