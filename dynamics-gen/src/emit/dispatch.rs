@@ -112,10 +112,10 @@
 //! AVX2 and FMA, cold and out of line: the copies' fused operations, so the same bits as they
 //! would have given, and a batch lane still equals the single call. Where no copy runs, `f_far`
 //! is what the portable body calls where that is `WIDE` (compiled with AVX2 and FMA), and
-//! elsewhere never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4 (2026-12-03),
-//! old and new code in one binary: G1's inverse dynamics −10 and −12 %, the UR5's and rand7's
-//! functions −1 to −11 %, mass matrices unchanged; the UR5's generated library +21 %
-//! instructions (a fourth body per function).
+//! elsewhere never called and `#[inline(always)]`, so never compiled. Measured on a Zen 4
+//! (2026-12-03), old and new code in one binary: G1's inverse dynamics −10 and −12 %, the
+//! UR5's and rand7's functions −1 to −11 %, mass matrices unchanged; the UR5's generated
+//! library +21 % instructions (a fourth body per function).
 //!
 //! A batch body's kernel in a copy (`sin_cos_rows_near`) returns `None` the same way, and the
 //! batch then calls its single-state function once per state ([`batch_far_call`]): each
