@@ -917,7 +917,11 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // A body whose kernel leaves the far angles to `X_far` has a second `const`, `FAR`: true in
     // `X_far` alone, whose kernel keeps the fallback in line.
     let far_generic = has_far.then(|| quote!(, const FAR: bool));
-    let not_far = has_far.then(|| quote!(, false));
+    // A call of the body with `WIDE` = `wide` (and `FAR` = `far`, where it has one).
+    let call_body = |wide: TokenStream, far: bool| {
+        let far = has_far.then(|| quote!(, #far));
+        quote!(self.#body_fn::<#wide #far #(, #generic_names)*>(#(#arg_names),*))
+    };
     // Compiled with AVX2 and FMA, a single-state function's portable body is the copies'
     // (`WIDE`: packs as vector instructions, the sines on all lanes, far angles out of line);
     // a batch function's stays the vectoriser's body, its lanes run as `native_call` says.
@@ -927,10 +931,10 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     } else {
         quote!({ cfg!(#wide_native) })
     };
-    let portable_body =
-        quote!(self.#body_fn::<#portable_wide #not_far #(, #generic_names)*>(#(#arg_names),*));
+    let portable_body = call_body(portable_wide, false);
     // The default x86-64 target's (no AVX2 there).
-    let sse2_body = quote!(self.#body_fn::<false #not_far #(, #generic_names)*>(#(#arg_names),*));
+    let sse2_body = call_body(quote!(false), false);
+    let far_body = call_body(quote!(true), true);
     let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
@@ -955,7 +959,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             #[cold]
             #[allow(unsafe_code, improper_ctypes_definitions)]
             unsafe extern "C" fn #far #fast_generics (#args) #ret {
-                self.#body_fn::<true, true #(, #generic_names)*>(#(#arg_names),*)
+                #far_body
             }
             #[doc = #other]
             #[cfg(not(#wide))]
@@ -1008,7 +1012,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The call of the body in a copy for `isa`, and the item of its body of instructions
     // where it has one. For `B` that do not fill its registers, the vectoriser's body: the
     // same bits, and the body of instructions is not generated for them (see `zmm_only`).
-    let plain = quote!(self.#body_fn::<true #not_far #(, #generic_names)*>(#(#arg_names),*));
+    let plain = call_body(quote!(true), false);
     let copy = |isa: Isa, copy: &Ident| -> (TokenStream, TokenStream) {
         let Some(z_body) = z_body.as_ref() else {
             return (plain.clone(), quote!());
