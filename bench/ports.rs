@@ -11,6 +11,10 @@
 //! rustc -O --edition 2021 bench/ports.rs -o /tmp/ports && /tmp/ports
 //! ```
 //!
+//! With `--clock` it prints the first line only; `bench/run.sh` and `bench/unseen.sh` record it
+//! before and after their runs (`bench/clock.sh`), since this shared host's clock moves the
+//! ratios between runs.
+//!
 //! The first line calibrates: eight multiply-add chains, one step each per iteration, take one
 //! multiply-add latency per iteration (4 cycles on Zen 3), which gives the clock. The chains run
 //! through `xmm0`–`xmm7` from one iteration to the next: the loop around the `asm!` does no
@@ -62,6 +66,10 @@ fn main() {
         "clock: {:.2} GHz (8 multiply-add chains: {calibration:.3} ns = 4 cycles)",
         1.0 / cycle
     );
+    // `--clock`: the first line only (the benchmark scripts record it beside their tables).
+    if std::env::args().any(|a| a == "--clock") {
+        return;
+    }
     let report =
         |name: &str, ns: f64| println!("{name:<44} {ns:6.3} ns  {:5.1} cycles", ns / cycle);
     report(

@@ -19,6 +19,8 @@ set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
 CACHE=${XDG_CACHE_HOME:-$HOME/.cache}/dynamics-gen-bench
+# shellcheck source=bench/clock.sh
+. "$HERE/clock.sh"
 VENV=$CACHE/venv
 BIN=$CACHE/pinocchio_bench
 ROBOTS=${ROBOTS:-"ur5 panda rand7 double_pendulum talos_upper_body solo12+ff g1_29dof+ff"}
@@ -65,6 +67,7 @@ m.saveToBinary(sys.argv[2])' "$u" "$CACHE/models/$name.bin" "$ff"
   FFS+=("$ff")
 done
 echo "# $(nproc) cores, $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1); Pinocchio 4.1.0, calls=$CALLS reps=$REPS"
+clock "before Pinocchio"
 echo "# robot           nv algo     median_ns     min_ns"
 "$BIN" --calls "$CALLS" --reps "$REPS" "${ARGS[@]}" | tee "$CACHE/pinocchio.txt"
 # 1b. With CODEGEN=1: Pinocchio's code-generated rnea, crba, aba and derivatives too (bench/run_codegen.sh; fixed-base
@@ -107,6 +110,7 @@ SIDE_BY_SIDE_ROBOTS=$(for r in $ROBOTS; do printf '%s ' "${r%+ff}"; done)
 export SIDE_BY_SIDE_ROBOTS
 (cd "$ROOT" && cargo bench -p dynamics-tests "${FEATURES[@]}" --bench dynamics -- ${CRITERION_ARGS:-} "$FILTER") |
   tee "$CACHE/cargo_bench.txt"
+clock "after ours"
 
 # 3. Side by side: criterion medians of this run only (estimates.json newer than START).
 CRIT=$CARGO_TARGET_DIR/criterion
@@ -326,3 +330,4 @@ if [ "${CALLGRIND:-0}" = 1 ]; then
     done
   done
 fi
+clock "at the end"

@@ -23,6 +23,8 @@ set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/.." && pwd)
 CACHE=${XDG_CACHE_HOME:-$HOME/.cache}/dynamics-gen-bench
+# shellcheck source=bench/clock.sh
+. "$HERE/clock.sh"
 VENV=$CACHE/venv
 WORK=$CACHE/unseen
 mkdir -p "$WORK" "$CACHE/models" "$HERE/unseen/src/generated"
@@ -92,10 +94,12 @@ echo "# ours: RUSTFLAGS='${RUSTFLAGS:-}', results to black_box $([ ${#FEATURES[@
 : > "$WORK/ours.txt"
 for round in $(seq "$ROUNDS"); do
   echo "# round $round of $ROUNDS"
+  clock "round $round"
   "$CACHE/pinocchio_bench" --calls 20000 --reps 5 xarm7="$CACHE/models/xarm7.bin" \
     baxter_left_arm="$CACHE/models/baxter_left_arm.bin" | tee -a "$WORK/pinocchio.txt"
   (cd "$HERE/unseen" && cargo run -q --release "${FEATURES[@]}") | tee -a "$WORK/ours.txt"
 done
+clock "at the end"
 
 # 4. Side by side (xarm7_snapped against Pinocchio on the file as written).
 "$VENV/bin/python" - "$WORK/pinocchio.txt" "$WORK/ours.txt" <<'PY'
