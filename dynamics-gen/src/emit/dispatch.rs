@@ -934,7 +934,6 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let portable_body = call_body(portable_wide, false);
     // The default x86-64 target's (no AVX2 there).
     let sse2_body = call_body(quote!(false), false);
-    let far_body = call_body(quote!(true), true);
     let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
     let far_item = has_far.then(|| {
         let doc = format!(
@@ -952,6 +951,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         let other = " Where no copy runs and the crate lacks AVX2 or FMA: never called (the \
                      portable body keeps its fallback), and so never compiled.";
         let wide = wide_cond();
+        let far_body = call_body(quote!(true), true);
         quote! {
             #[doc = #doc]
             #[cfg(#wide)]
