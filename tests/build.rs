@@ -774,6 +774,10 @@ pub fn sin_cos_variants_differ(q: &[f64], v: &[f64], a: &[f64]) -> (usize, usize
     cmp(r.gravity(&q).as_slice(), r.gravity_from_sin_cos(&q, &sq, &cq).as_slice());
     cmp(r.forward_dynamics(&q, &v, &a).as_slice(), r.forward_dynamics_from_sin_cos(&q, &sq, &cq, &v, &a).as_slice());
     cmp(&[r.kinetic_energy(&q, &v)], &[r.kinetic_energy_from_sin_cos(&q, &sq, &cq, &v)]);
+    let (mut lower, mut given) = (::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros(), ::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros());
+    r.mass_matrix_lower_into(&q, &mut lower);
+    r.mass_matrix_lower_into_from_sin_cos(&q, &sq, &cq, &mut given);
+    cmp(lower.as_slice(), given.as_slice());
     n
 }}
 /// `(nq, nv)` of this robot, for `sin_cos_variants_differ`'s arguments.
@@ -877,7 +881,8 @@ pub fn batch_instances() {{
 }
 
 /// The source of `dispatched_copies_differ` for a [`COPIES`] module: the inverse dynamics,
-/// mass matrix, forward dynamics (with `a` as τ) and gravity of its AVX-512 and its AVX2 copy
+/// mass matrix, forward dynamics (with `a` as τ), gravity and the mass matrix in place
+/// (`mass_matrix_lower_into`) of its AVX-512 and its AVX2 copy
 /// at one state, as (entries compared, entries whose bits differ); `None` unless the CPU has
 /// both instruction sets, or where the binary has no AVX2 copy.
 fn copies_helper(nq: usize, nv: usize, s: &str) -> String {
@@ -900,6 +905,10 @@ pub fn dispatched_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usiz
         cmp(r.mass_matrix_avx512(&q).as_slice(), r.mass_matrix_avx2(&q).as_slice());
         cmp(r.forward_dynamics_avx512(&q, &v, &a).as_slice(), r.forward_dynamics_avx2(&q, &v, &a).as_slice());
         cmp(r.gravity_avx512(&q).as_slice(), r.gravity_avx2(&q).as_slice());
+        let (mut wide, mut mid) = (::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros(), ::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros());
+        r.mass_matrix_lower_into_avx512(&q, &mut wide);
+        r.mass_matrix_lower_into_avx2(&q, &mut mid);
+        cmp(wide.as_slice(), mid.as_slice());
     }}
     Some(n)
 }}

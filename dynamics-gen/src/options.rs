@@ -106,6 +106,7 @@ pub const FUNCTIONS: &[&str] = &[
     "friction",
     "coriolis_matrix",
     "mass_matrix_and_bias",
+    "mass_matrix_lower_into",
     "end_effector_forces",
     "inverse_dynamics_with_tip",
     "forward_dynamics_with_tip",

@@ -176,6 +176,11 @@ pub fn stats(generated: &Generated, code: &str) -> Stats {
         ops: counted(&d.graph, &both),
         lines: function_lines(code, "mass_matrix_and_bias"),
     });
+    functions.push(FunctionStats {
+        name: "mass_matrix_lower_into",
+        ops: counted(&d.graph, &d.mass_matrix),
+        lines: function_lines(code, "mass_matrix_lower_into"),
+    });
     // The unrolled part of constrained forward dynamics: the factor of M and the
     // unconstrained accelerations (the K-sized part runs in loops and depends on the
     // caller's K).

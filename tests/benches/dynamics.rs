@@ -166,6 +166,19 @@ macro_rules! bench_robot {
             |s| Gen.mass_matrix(black_box(&s.q)),
             dynamics_reference::mass_matrix(&robot, black_box(s.q.as_slice()))
         );
+        // In place, into one matrix kept across the calls (its lower triangle).
+        let mut lower = SMatrix::<f64, $nv, $nv>::zeros();
+        pair_rows!(
+            group,
+            states,
+            $label,
+            "mass_matrix_lower_into",
+            |s| {
+                Gen.mass_matrix_lower_into(black_box(&s.q), &mut lower);
+                keep(&lower);
+            },
+            dynamics_reference::mass_matrix(&robot, black_box(s.q.as_slice()))
+        );
         pair_rows!(
             group,
             states,

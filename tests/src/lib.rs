@@ -144,6 +144,8 @@ pub trait GeneratedDynamics: Sync {
     fn joint_names(&self) -> Vec<&'static str>;
     /// `M(q)`.
     fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64>;
+    /// `start` after `mass_matrix_lower_into(q, start)` (in the case's scalar type).
+    fn mass_matrix_lower_into(&self, q: &[f64], start: &DMatrix<f64>) -> DMatrix<f64>;
     /// `c(q, q̇)`.
     fn coriolis(&self, q: &[f64], qd: &[f64]) -> DVector<f64>;
     /// `g(q)`.
@@ -445,6 +447,12 @@ macro_rules! adapter {
             }
             fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
                 let m = $m::Robot::mass_matrix(self, &to_s::<$s, $nq>(q));
+                DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64)
+            }
+            fn mass_matrix_lower_into(&self, q: &[f64], start: &DMatrix<f64>) -> DMatrix<f64> {
+                let mut m =
+                    nalgebra::SMatrix::<$s, $nv, $nv>::from_fn(|i, j| start[(i, j)] as $s);
+                $m::Robot::mass_matrix_lower_into(self, &to_s::<$s, $nq>(q), &mut m);
                 DMatrix::from_fn($nv, $nv, |i, j| m[(i, j)] as f64)
             }
             fn coriolis(&self, q: &[f64], qd: &[f64]) -> DVector<f64> {

@@ -37,6 +37,28 @@ fn compare_at(
     let m_ref = dynamics_reference::mass_matrix(robot, q);
     let m = case.imp.mass_matrix(q);
     worst[0] = worst[0].max(check(case, "M", m.as_slice(), m_ref.as_slice(), rtol, atol));
+    // In place: `M`'s lower triangle, the same bits, and nothing else written (the strict
+    // upper triangle, and a tree's structural zeros, keep what `m` held).
+    let held = -123.5;
+    let nv = m.nrows();
+    let lower = case
+        .imp
+        .mass_matrix_lower_into(q, &nalgebra::DMatrix::from_element(nv, nv, held));
+    for c in 0..nv {
+        for r in 0..nv {
+            let (x, want) = (lower[(r, c)], m[(r, c)]);
+            let ok = if r < c {
+                x == held
+            } else {
+                x.to_bits() == want.to_bits() || (x == held && want == 0.0)
+            };
+            assert!(
+                ok,
+                "{} mass_matrix_lower_into ({r}, {c}): {x}, M has {want}",
+                case.module
+            );
+        }
+    }
     let c_ref = dynamics_reference::vel_quadratic_forces(robot, q, qd);
     let c = case.imp.coriolis(q, qd);
     worst[1] = worst[1].max(check(case, "c", c.as_slice(), c_ref.as_slice(), rtol, atol));

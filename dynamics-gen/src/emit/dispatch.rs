@@ -854,11 +854,14 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The arguments as passed, kept aside at the body's top (`far_args`): bodies shadow them
     // (an actuated robot's forward dynamics takes `tau − friction(q̇)` as its `tau`), and
     // `X_far` must get the originals.
+    // An output argument (`m: &mut …`, `mass_matrix_lower_into`) is not kept aside: the body
+    // writes through it before the angles are known, so `X_far` gets it as it is.
+    let kept = by_value_names(&args, &arg_names);
     let batch_far = batch_far_call(&name, &arg_names, &ret);
     let is_batch = batch_far.is_some();
     let far_call = batch_far.unwrap_or_else(|| {
         quote!({
-            let (#(#arg_names,)*) = far_args;
+            let (#(#kept,)*) = far_args;
             unsafe { self.#far #turbofish (#(#arg_names),*) }
         })
     });
@@ -867,7 +870,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     let far_before = used.far;
     let fused = wide_body(body, used, Some(&far_call));
     let exits = used.far > far_before;
-    let fused = with_far_args(fused, &arg_names, exits);
+    let fused = with_far_args(fused, &kept, exits);
     // A single-state body's exits need `FAR` and `X_far`; a batch's call its single-state
     // function instead.
     let has_far = exits && !is_batch;
@@ -1613,6 +1616,26 @@ pub(super) fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
             }
             _ => None,
         })
+        .collect()
+}
+
+/// The names of `arg_names` (the arguments `args` after `&self`) that are not mutable
+/// references (`m: &mut T`).
+fn by_value_names(args: &TokenStream, arg_names: &[Ident]) -> Vec<Ident> {
+    let is_mut_ref = |p: &[TokenTree]| {
+        matches!(p, [_, TokenTree::Punct(colon), TokenTree::Punct(amp), TokenTree::Ident(m), ..]
+            if colon.as_char() == ':' && amp.as_char() == '&' && m == "mut")
+    };
+    let muts: Vec<bool> = split_commas(args.clone())
+        .iter()
+        .skip(1)
+        .map(|p| is_mut_ref(p))
+        .collect();
+    arg_names
+        .iter()
+        .zip(muts.iter().chain(std::iter::repeat(&false)))
+        .filter(|(_, &m)| !m)
+        .map(|(n, _)| n.clone())
         .collect()
 }
 

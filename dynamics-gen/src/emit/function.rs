@@ -41,6 +41,13 @@ pub enum Output {
     /// [`STORED_MIN_LIVE`] values live. As [`Output::Matrix`] otherwise, in a batch body and
     /// in a body split into parts. The mass matrix, `Ṁ` and `M⁻¹`.
     StoredMatrix,
+    /// One symmetric `rows × rows` matrix written into the caller's `m: &mut` matrix: its lower
+    /// triangle (the diagonal and below), entry by entry as each is computed, as
+    /// [`Output::StoredMatrix`] is (scheduled from the last entry back), and nothing else:
+    /// no zeroing, no mirror half, no entry that is +0.0 for every input (the tree's
+    /// structural zeros). Returns `()`. Where the body is split into parts, which cannot
+    /// write into `m`, the same entries are written at the end. `mass_matrix_lower_into`.
+    StoredLower,
     /// One scalar (the first output).
     Scalar,
     /// One pose: a rotation by rows (9 outputs), then a translation (3), returned as
@@ -951,6 +958,8 @@ impl FunctionBody<'_> {
                 quote!(m)
             }
             Output::Matrix | Output::StoredMatrix => self.matrix(&bind, self.outputs),
+            Output::StoredLower if stores.is_empty() => self.lower_writes(&bind),
+            Output::StoredLower => quote!(),
             Output::Scalar => self.expr(&bind, self.outputs[0]),
             Output::Pose => self.pose(&bind, self.outputs),
             Output::Matrices(count) => {
@@ -1426,9 +1435,10 @@ impl FunctionBody<'_> {
         };
         let entries = rows * cols;
         let splits = self.self_ty.is_some() && body.len() + entries > MAX_UNSPLIT_LETS;
+        let lower = self.output == Output::StoredLower;
         if self.lanes.is_some()
             || splits
-            || self.peak_live_as_literal(bind, body, last_use) <= STORED_MIN_LIVE
+            || (!lower && self.peak_live_as_literal(bind, body, last_use) <= STORED_MIN_LIVE)
         {
             return Vec::new();
         }
@@ -1439,6 +1449,10 @@ impl FunctionBody<'_> {
             let id = self.outputs[k];
             // The matrix starts at +0.0 (a −0.0 entry is still written, as the literal has it).
             if self.graph.as_const(id).is_some_and(|x| x.to_bits() == 0) {
+                continue;
+            }
+            // The lower triangle only (row `k / cols` at or below column `k % cols`).
+            if lower && k / cols < k % cols {
                 continue;
             }
             match slot.get(&id) {
@@ -1481,7 +1495,7 @@ impl FunctionBody<'_> {
     /// `stored_first` (`m.0`).
     fn stored_place(&self) -> Option<(TokenStream, usize, usize)> {
         match self.output {
-            Output::StoredMatrix => Some((quote!(m), self.rows, self.cols)),
+            Output::StoredMatrix | Output::StoredLower => Some((quote!(m), self.rows, self.cols)),
             Output::Tuple {
                 shapes,
                 stored_first: true,
@@ -1572,6 +1586,27 @@ impl FunctionBody<'_> {
         }
         let ty = self.matrix_type();
         quote!(#ty::from_array_storage(#na::ArrayStorage([#(#columns),*])))
+    }
+
+    /// The writes of an [`Output::StoredLower`] whose entries were not stored as computed
+    /// (a body split into parts): `m.data.0[c][r] = value;` for each entry on or below the
+    /// diagonal that is not +0.0 for every input.
+    fn lower_writes(&self, bind: &[Binding]) -> TokenStream {
+        let cols = self.cols;
+        let writes = (0..self.rows * cols).filter_map(|k| {
+            let (r, c) = (k / cols, k % cols);
+            let id = self.outputs[k];
+            if r < c || self.graph.as_const(id).is_some_and(|x| x.to_bits() == 0) {
+                return None;
+            }
+            let e = self.expr(bind, id);
+            let (r, c) = (
+                proc_macro2::Literal::usize_unsuffixed(r),
+                proc_macro2::Literal::usize_unsuffixed(c),
+            );
+            Some(quote!(m.data.0[#c][#r] = #e;))
+        });
+        quote!(#(#writes)*)
     }
 
     /// `Self::isometry(R, p)` from the first 12 outputs of `outputs`.

@@ -218,6 +218,13 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         nv_usize,
         Output::StoredMatrix,
     );
+    let mass_matrix_lower = body(
+        "mass_matrix_lower_into",
+        &dynamics.mass_matrix,
+        std::slice::from_ref(&q),
+        nv_usize,
+        Output::StoredLower,
+    );
     // The bias written entry by entry where its literal would keep many values live, as the
     // mass matrix is (see `Output::StoredMatrix`): measured (2026-12-04, old and new code in
     // one binary, interleaved, five processes) G1 (floating base) −6 to −15 %, TALOS −9 to
@@ -481,6 +488,24 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         #[must_use]
         pub fn mass_matrix(&self, q: &#q_ty) -> #mat_ty {
             #mass_matrix
+        }
+
+        /// `M(q)`, as [`Self::mass_matrix`] computes it (the same bits), written in place: its
+        /// lower triangle (the diagonal and below) into `m`, and nothing else. The entries
+        /// above the diagonal and the entries that are zero whatever `q` (a tree's joints on
+        /// different branches) are not written: start from a zero matrix and pass it at every
+        /// call, and `m` holds `M(q)`'s lower triangle with zeros above it, which is what
+        /// nalgebra's `Cholesky::new` reads (`m.fill_upper_triangle_with_lower_triangle()`
+        /// gives the whole `M`). Without the zeroing and the mirror half that a fresh
+        /// symmetric matrix needs, a tree's mass matrix takes a third to a half less time.
+        #[doc = ""]
+        #[doc = #mass_doc]
+        #[doc = ""]
+        #[doc = #units]
+        #armature_doc
+        #[inline]
+        pub fn mass_matrix_lower_into(&self, q: &#q_ty, m: &mut #mat_ty) {
+            #mass_matrix_lower
         }
 
         /// The Coriolis and centrifugal terms `c(q, q̇)` of `τ = M(q) q̈ + c(q, q̇) + g(q)`.

@@ -171,7 +171,7 @@ pub struct GenerateArgs {
     /// Generate only these functions (comma-separated or repeated; default all), named as in
     /// the generated impl: mass_matrix, coriolis, gravity, inverse_dynamics,
     /// forward_dynamics, kinetic_energy, mass_matrix_dot, friction, coriolis_matrix,
-    /// mass_matrix_and_bias, end_effector_forces, inverse_dynamics_with_tip,
+    /// mass_matrix_and_bias, mass_matrix_lower_into, end_effector_forces, inverse_dynamics_with_tip,
     /// forward_dynamics_with_tip, task_space_mass_matrix, task_space_bias,
     /// constrained_forward_dynamics, inverse_dynamics_derivatives,
     /// inverse_dynamics_with_derivatives, forward_dynamics_derivatives,
