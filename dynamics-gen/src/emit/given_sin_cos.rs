@@ -139,10 +139,12 @@ fn variant(item: &[TokenTree], q_ty: &TokenStream) -> Option<TokenStream> {
          `q`, as [`Self::{name}`] does). With `(sin_q, cos_q) = self.sin_cos(q)` it is \
          [`Self::{name}`]: the same values, bit for bit where both are dispatched alike."
     );
+    // A function that writes into an argument (`mass_matrix_lower_into`) returns nothing.
+    let must_use = (!ret.is_empty()).then(|| quote!(#[must_use]));
     Some(quote! {
         #[doc = #doc]
         #[inline]
-        #[must_use]
+        #must_use
         pub fn #vname(#new_args) #ret {
             #new_body
         }
