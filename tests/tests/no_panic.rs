@@ -46,6 +46,10 @@ mod release {
                     Robot::DEFAULT.mass_matrix(q)
                 }
                 #[no_panic]
+                pub fn mass_matrix_lower_into(q: &Q, m: &mut SMatrix<$s, $nv, $nv>) {
+                    Robot::DEFAULT.mass_matrix_lower_into(q, m)
+                }
+                #[no_panic]
                 pub fn coriolis(q: &Q, qd: &V) -> V {
                     Robot::DEFAULT.coriolis(q, qd)
                 }
@@ -152,6 +156,9 @@ mod release {
                     let a1 = SMatrix::<$s, 1, $nv>::from_fn(|_, j| 0.3 * j as $s + 0.1);
                     let a3 = SMatrix::<$s, 3, $nv>::from_fn(|i, j| (i * j) as $s + 0.1);
                     let mut e = friction(&v)[0] + coriolis_matrix(&q, &v)[(0, 0)];
+                    let mut lower = SMatrix::<$s, $nv, $nv>::zeros();
+                    mass_matrix_lower_into(&q, &mut lower);
+                    e += lower[(0, 0)];
                     e += mass_matrix_and_bias(&q, &v).1[0] + end_effector_forces(&q, &f)[0];
                     e += inverse_dynamics_with_tip(&q, &v, &v, &f)[0];
                     e += forward_dynamics_with_tip(&q, &v, &v, &f)[0];
