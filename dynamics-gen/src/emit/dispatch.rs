@@ -856,7 +856,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // `X_far` must get the originals.
     // An output argument (`m: &mut …`, `mass_matrix_lower_into`) is not kept aside: the body
     // writes through it before the angles are known, so `X_far` gets it as it is.
-    let kept = by_value_names(&args, &arg_names);
+    let kept = by_value_names(&args);
     let batch_far = batch_far_call(&name, &arg_names, &ret);
     let is_batch = batch_far.is_some();
     let far_call = batch_far.unwrap_or_else(|| {
@@ -1619,23 +1619,22 @@ pub(super) fn receiver_and_names(args: TokenStream) -> Option<Vec<Ident>> {
         .collect()
 }
 
-/// The names of `arg_names` (the arguments `args` after `&self`) that are not mutable
-/// references (`m: &mut T`).
-fn by_value_names(args: &TokenStream, arg_names: &[Ident]) -> Vec<Ident> {
-    let is_mut_ref = |p: &[TokenTree]| {
-        matches!(p, [_, TokenTree::Punct(colon), TokenTree::Punct(amp), TokenTree::Ident(m), ..]
-            if colon.as_char() == ':' && amp.as_char() == '&' && m == "mut")
-    };
-    let muts: Vec<bool> = split_commas(args.clone())
-        .iter()
+/// The names of the arguments `args` after `&self` that are not mutable references
+/// (`m: &mut T`).
+fn by_value_names(args: &TokenStream) -> Vec<Ident> {
+    split_commas(args.clone())
+        .into_iter()
         .skip(1)
-        .map(|p| is_mut_ref(p))
-        .collect();
-    arg_names
-        .iter()
-        .zip(muts.iter().chain(std::iter::repeat(&false)))
-        .filter(|(_, &m)| !m)
-        .map(|(n, _)| n.clone())
+        .filter_map(|p| match p.as_slice() {
+            [TokenTree::Ident(name), TokenTree::Punct(colon), ty @ ..]
+                if colon.as_char() == ':' =>
+            {
+                let mut_ref = matches!(ty, [TokenTree::Punct(amp), TokenTree::Ident(m), ..]
+                    if amp.as_char() == '&' && m == "mut");
+                (!mut_ref).then(|| name.clone())
+            }
+            _ => None,
+        })
         .collect()
 }
 

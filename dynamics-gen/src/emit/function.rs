@@ -1447,12 +1447,7 @@ impl FunctionBody<'_> {
         let mut slot: std::collections::HashMap<ExprId, usize> = std::collections::HashMap::new();
         for k in (0..entries).rev() {
             let id = self.outputs[k];
-            // The matrix starts at +0.0 (a −0.0 entry is still written, as the literal has it).
-            if self.graph.as_const(id).is_some_and(|x| x.to_bits() == 0) {
-                continue;
-            }
-            // The lower triangle only (row `k / cols` at or below column `k % cols`).
-            if lower && k / cols < k % cols {
+            if !self.is_stored(k, cols) {
                 continue;
             }
             match slot.get(&id) {
@@ -1593,20 +1588,30 @@ impl FunctionBody<'_> {
     /// diagonal that is not +0.0 for every input.
     fn lower_writes(&self, bind: &[Binding]) -> TokenStream {
         let cols = self.cols;
-        let writes = (0..self.rows * cols).filter_map(|k| {
-            let (r, c) = (k / cols, k % cols);
-            let id = self.outputs[k];
-            if r < c || self.graph.as_const(id).is_some_and(|x| x.to_bits() == 0) {
-                return None;
-            }
-            let e = self.expr(bind, id);
-            let (r, c) = (
-                proc_macro2::Literal::usize_unsuffixed(r),
-                proc_macro2::Literal::usize_unsuffixed(c),
-            );
-            Some(quote!(m.data.0[#c][#r] = #e;))
-        });
+        let writes = (0..self.rows * cols)
+            .filter(|&k| self.is_stored(k, cols))
+            .map(|k| {
+                let e = self.expr(bind, self.outputs[k]);
+                let (r, c) = (
+                    proc_macro2::Literal::usize_unsuffixed(k / cols),
+                    proc_macro2::Literal::usize_unsuffixed(k % cols),
+                );
+                quote!(m.data.0[#c][#r] = #e;)
+            });
         quote!(#(#writes)*)
+    }
+
+    /// Whether output `k` (row-major, `cols` columns) of a stored matrix is written: not a
+    /// +0.0 constant (the matrix starts zeroed, or keeps the caller's zeros; a −0.0 entry is
+    /// still written, as the literal has it), and for an [`Output::StoredLower`] on or below
+    /// the diagonal.
+    fn is_stored(&self, k: usize, cols: usize) -> bool {
+        let zero = self
+            .graph
+            .as_const(self.outputs[k])
+            .is_some_and(|x| x.to_bits() == 0);
+        let upper = self.output == Output::StoredLower && k / cols < k % cols;
+        !zero && !upper
     }
 
     /// `Self::isometry(R, p)` from the first 12 outputs of `outputs`.
