@@ -1724,8 +1724,9 @@ fn calls_arithmetic(body: &TokenStream) -> bool {
 /// The `_with::<WIDE>` forms of the vector helpers ([`super::function::vector_helpers`]):
 /// when `WIDE` (the AVX-512 and AVX2 copies, compiled with AVX2 and FMA), one AVX2
 /// instruction on the four lanes (`vfmadd…pd`, `vmulpd`, `vaddpd`, `vsubpd`, `vxorpd` on a
-/// 256-bit register; for `f32` the `…ps` forms on a 128-bit one); the same operations on the
-/// same values as the lanes' scalar forms, so the same bits.
+/// 256-bit register; for `f32` the `…ps` forms on a 128-bit one), and the `v2_…` helpers'
+/// on the first two lanes of an `f64` pack (a 128-bit register; the other two lanes 0); the
+/// same operations on the same values as the lanes' scalar forms, so the same bits.
 fn vector_helpers(
     cfg: &TokenStream,
     used: &std::collections::BTreeSet<String>,
@@ -1752,8 +1753,8 @@ fn vector_helpers(
                         // SAFETY: `WIDE` is true only in the `*_avx512` and `*_avx2` copies,
                         // which run only where `has_avx512` or `has_avx2` found AVX2 and FMA,
                         // and in code compiled with both; `[T; 4]` and the register type are
-                        // the same 32 (`f64`) or 16 (`f32`) bytes.
-                        return unsafe { transmute::<#reg, [#t; 4]>(#op) };
+                        // the same 32 (`f64`) or 16 (`f32`) bytes, as `[f64; 2]` and `__m128d`.
+                        return unsafe { #op };
                     }
                 }
                 Self::#plain(#(#args),*)
@@ -1784,16 +1785,50 @@ fn vector_helpers(
         ],
     }
     .map(|f| format_ident!("{}", f));
-    let fma = one("v4_fma", &["a", "b", "c"], quote!(#fma(#a, #b, #c)));
-    let mul = one("v4_mul", &["a", "b"], quote!(#mul(#a, #b)));
-    let add = one("v4_add", &["a", "b"], quote!(#add(#a, #b)));
-    let sub = one("v4_sub", &["a", "b"], quote!(#sub(#a, #b)));
-    let neg = one("v4_neg", &["a"], quote!(#xor(#a, #set1(-0.0))));
-    let helpers = [fma, mul, add, sub, neg];
-    let used = super::function::VECTOR_HELPERS
-        .iter()
-        .zip(helpers)
-        .filter(|(name, _)| used.contains(**name))
+    let four = |name: &'static str, args: &[&str], op: TokenStream| {
+        (
+            name,
+            one(name, args, quote!(transmute::<#reg, [#t; 4]>(#op))),
+        )
+    };
+    let mut helpers = vec![
+        four("v4_fma", &["a", "b", "c"], quote!(#fma(#a, #b, #c))),
+        four("v4_mul", &["a", "b"], quote!(#mul(#a, #b))),
+        four("v4_add", &["a", "b"], quote!(#add(#a, #b))),
+        four("v4_sub", &["a", "b"], quote!(#sub(#a, #b))),
+        four("v4_neg", &["a"], quote!(#xor(#a, #set1(-0.0)))),
+    ];
+    // Packs of two lanes, which the emitter writes for `f64` only (`f32`'s four lanes are one
+    // 128-bit register already): the 128-bit operation on the first two lanes, the other two 0.
+    if scalar == Scalar::F64 {
+        let two = |name: &'static str, op: &str, args: &[&str]| {
+            let op = format_ident!("{}", op);
+            let mut operands: Vec<TokenStream> = args
+                .iter()
+                .map(|a| {
+                    let a = format_ident!("{}", a);
+                    quote!(transmute::<[f64; 2], __m128d>([#a[0], #a[1]]))
+                })
+                .collect();
+            if name == "v2_neg" {
+                operands.push(quote!(_mm_set1_pd(-0.0)));
+            }
+            let op = quote! {
+                let [r0, r1] = transmute::<__m128d, [f64; 2]>(#op(#(#operands),*));
+                [r0, r1, 0.0, 0.0]
+            };
+            (name, one(name, args, op))
+        };
+        helpers.extend([
+            two("v2_fma", "_mm_fmadd_pd", &["a", "b", "c"]),
+            two("v2_mul", "_mm_mul_pd", &["a", "b"]),
+            two("v2_add", "_mm_add_pd", &["a", "b"]),
+            two("v2_neg", "_mm_xor_pd", &["a"]),
+        ]);
+    }
+    let used = helpers
+        .into_iter()
+        .filter(|(name, _)| used.contains(*name))
         .map(|(_, helper)| helper);
     quote!(#(#used)*)
 }

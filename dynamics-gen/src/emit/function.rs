@@ -1245,6 +1245,7 @@ impl FunctionBody<'_> {
         use super::pack::{Op, Operand};
         let pack = &p.packing.packs[k];
         let [a, b] = &pack.operands;
+        let [fma, add, mul] = ["fma", "add", "mul"].map(|op| self.vector_op(&pack.lanes, op));
         let fused = if pack.op == Op::Add {
             self.fused_operand(p, pack)
         } else {
@@ -1262,19 +1263,30 @@ impl FunctionBody<'_> {
                 let [x, y] = &p.packing.packs[*q].operands;
                 let x = self.pack_operand(p, x, bind, at, last_use, reads);
                 let y = self.pack_operand(p, y, bind, at, last_use, reads);
-                quote!(Self::v4_fma(#x, #y, #c))
+                quote!(Self::#fma(#x, #y, #c))
             }
             Op::Add => {
                 let a = self.pack_operand(p, a, bind, at, last_use, reads);
                 let b = self.pack_operand(p, b, bind, at, last_use, reads);
-                quote!(Self::v4_add(#a, #b))
+                quote!(Self::#add(#a, #b))
             }
             Op::Mul => {
                 let a = self.pack_operand(p, a, bind, at, last_use, reads);
                 let b = self.pack_operand(p, b, bind, at, last_use, reads);
-                quote!(Self::v4_mul(#a, #b))
+                quote!(Self::#mul(#a, #b))
             }
         }
+    }
+
+    /// The helper of vector operation `op` (`fma`, `add`, `mul`, `neg`) on a pack of
+    /// `lanes`: `v2_…` where only the first two lanes are used and the scalar is `f64` (one
+    /// 128-bit register in the dispatched copies, where a 256-bit operation on two zero lanes
+    /// makes LLVM build its constants from two scalar loads and spill them in long bodies:
+    /// G1's forward dynamics 57,975 → 55,784 bytes, `docs/performance.md`, fifty-seventh
+    /// session), `v4_…` otherwise (`f32`'s four lanes are one 128-bit register already).
+    fn vector_op(&self, lanes: &super::pack::Lanes, op: &str) -> Ident {
+        let two = lanes[2..].iter().all(Option::is_none) && self.scalar == Scalar::F64;
+        format_ident!("{}_{}", if two { "v2" } else { "v4" }, op)
     }
 
     /// The tokens of a pack's operand, its reads noted.
@@ -1318,7 +1330,8 @@ impl FunctionBody<'_> {
                     .enumerate()
                     .all(|(k, m)| m.is_none_or(|(j, neg)| j == k && neg));
                 if negated {
-                    return quote!(Self::v4_neg(#name));
+                    let neg = self.vector_op(&p.packing.packs[*q].lanes, "neg");
+                    return quote!(Self::#neg(#name));
                 }
                 let lanes = map.iter().map(|m| match m {
                     Some((j, neg)) => {
@@ -1341,8 +1354,10 @@ impl FunctionBody<'_> {
                 if signs.iter().all(|&s| s >= 0.0) {
                     quote!([#e; 4])
                 } else {
+                    let lanes = signs.map(|s| (s != 0.0).then_some((*x, s < 0.0)));
+                    let mul = self.vector_op(&lanes, "mul");
                     let signs = signs.map(|s| self.literal(s));
-                    quote!(Self::v4_mul([#e; 4], [#(#signs),*]))
+                    quote!(Self::#mul([#e; 4], [#(#signs),*]))
                 }
             }
             Operand::Consts(c) => {
@@ -2023,7 +2038,9 @@ pub fn mul_add_helper(scalar: Scalar) -> TokenStream {
 
 /// The names of the vector helpers of [`vector_helpers`] (and, with the dispatch, of their
 /// `_with::<WIDE>` forms).
-pub const VECTOR_HELPERS: [&str; 5] = ["v4_fma", "v4_mul", "v4_add", "v4_sub", "v4_neg"];
+pub const VECTOR_HELPERS: [&str; 9] = [
+    "v4_fma", "v4_mul", "v4_add", "v4_sub", "v4_neg", "v2_fma", "v2_mul", "v2_add", "v2_neg",
+];
 
 /// The private helpers on `[T; 4]` (`T` the scalar) that packed bodies call
 /// ([`super::pack`]): lane by lane the scalar operations (`v4_fma` through
@@ -2066,6 +2083,30 @@ pub fn vector_helpers(scalar: Scalar) -> TokenStream {
         fn v4_neg(a: [#t; 4]) -> [#t; 4] {
             let [a0, a1, a2, a3] = a;
             [-a0, -a1, -a2, -a3]
+        }
+        /// [`Self::v4_fma`] on the first two lanes (packs of two, `f64`); the other two 0.
+        #[inline(always)]
+        fn v2_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
+            let ([a0, a1, ..], [b0, b1, ..], [c0, c1, ..]) = (a, b, c);
+            [Self::mul_add(a0, b0, c0), Self::mul_add(a1, b1, c1), 0.0, 0.0]
+        }
+        /// [`Self::v4_mul`] on the first two lanes; the other two 0.
+        #[inline(always)]
+        fn v2_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+            let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
+            [a0 * b0, a1 * b1, 0.0, 0.0]
+        }
+        /// [`Self::v4_add`] on the first two lanes; the other two 0.
+        #[inline(always)]
+        fn v2_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+            let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
+            [a0 + b0, a1 + b1, 0.0, 0.0]
+        }
+        /// [`Self::v4_neg`] on the first two lanes; the other two 0.
+        #[inline(always)]
+        fn v2_neg(a: [#t; 4]) -> [#t; 4] {
+            let [a0, a1, ..] = a;
+            [-a0, -a1, 0.0, 0.0]
         }
     }
 }
@@ -2237,6 +2278,34 @@ mod tests {
                 assert!(!body_of(&code, dot).contains("v4_"), "{dot}");
             }
         }
+    }
+
+    #[test]
+    fn packs_of_two_f64_lanes_are_128_bit_operations() {
+        let talos = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/data/robots/trees/talos_upper_body.urdf"
+        );
+        let generate = |scalar| {
+            crate::Builder::new(talos)
+                .floating_base(true)
+                .scalar(scalar)
+                .no_runtime_trait()
+                .functions(["gravity"])
+                .generate()
+                .expect("generates")
+        };
+        // TALOS' two arms are alike: packs of two lanes, one 128-bit register each in the
+        // dispatched copies.
+        let code = generate(crate::Scalar::F64);
+        let body = body_of(&code, "gravity");
+        assert!(body.contains("Self::v2_fma_with::<WIDE") && !body.contains("v4_"));
+        assert!(code.contains("fn v2_fma(a: [f64; 4]") && code.contains("_mm_fmadd_pd("));
+        // `f32`'s four lanes are one 128-bit register already: the four-lane helpers.
+        let single = generate(crate::Scalar::F32);
+        let body = body_of(&single, "gravity");
+        assert!(body.contains("Self::v4_fma_with::<WIDE") && !body.contains("v2_"));
+        assert!(!single.contains("fn v2_"));
     }
 
     /// Solo-12's code on its floating base, `functions` only, no runtime trait.
