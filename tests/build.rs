@@ -64,6 +64,7 @@ const COPIES: &[&str] = &[
     "shipped_ur5",
     "urdf_panda",
     "tree_solo12",
+    "tree_talos_upper_body",
     "random_104_f32",
     "f32_tree_solo12",
 ];

@@ -2,8 +2,8 @@
 //! (`dynamics-gen/src/emit/dispatch.rs`), so the two must give the same bits. A machine with
 //! AVX-512 runs only the AVX-512 copy through the public functions, and a machine without it
 //! only the AVX2 one; here both are called directly, on the UR5, the Panda, Solo-12 (a floating
-//! tree, in f64 and in f32: its legs in `[f32; 4]` packs) and an f32 chain, at 256 random
-//! states each. Where the CPU lacks either instruction set, or the binary is compiled with
+//! tree, in f64 and in f32: its legs in `[f32; 4]` packs), the TALOS upper body (its arms in
+//! packs of two `f64` lanes, 128-bit operations) and an f32 chain, at 256 random states each. Where the CPU lacks either instruction set, or the binary is compiled with
 //! AVX-512 or with AVX2 and FMA (no such pair of copies), the test says so and checks nothing.
 //!
 //! The batch functions' AVX2 bodies of instructions (the runtime's `Avx2` token) run through
@@ -69,7 +69,7 @@ fn compare(
 ))]
 #[test]
 fn avx2_copies_give_the_avx512_copies_bits() {
-    let cases: [(&str, Differ, (usize, usize)); 5] = [
+    let cases: [(&str, Differ, (usize, usize)); 6] = [
         (
             "shipped_ur5",
             dynamics_tests::generated::shipped_ur5::dispatched_copies_differ,
@@ -84,6 +84,11 @@ fn avx2_copies_give_the_avx512_copies_bits() {
             "tree_solo12",
             dynamics_tests::generated::tree_solo12::dispatched_copies_differ,
             dynamics_tests::generated::tree_solo12::COPIES_DIMS,
+        ),
+        (
+            "tree_talos_upper_body",
+            dynamics_tests::generated::tree_talos_upper_body::dispatched_copies_differ,
+            dynamics_tests::generated::tree_talos_upper_body::COPIES_DIMS,
         ),
         (
             "random_104_f32",
