@@ -1282,7 +1282,7 @@ impl FunctionBody<'_> {
     /// `lanes`: `v2_…` where only the first two lanes are used and the scalar is `f64` (one
     /// 128-bit register in the dispatched copies, where a 256-bit operation on two zero lanes
     /// makes LLVM build its constants from two scalar loads and spill them in long bodies:
-    /// G1's forward dynamics 57,975 → 55,784 bytes, `docs/performance.md`, fifty-seventh
+    /// G1's forward dynamics 57,975 → 55,459 bytes, `docs/performance.md`, fifty-seventh
     /// session), `v4_…` otherwise (`f32`'s four lanes are one 128-bit register already).
     fn vector_op(&self, lanes: &super::pack::Lanes, op: &str) -> Ident {
         let two = lanes[2..].iter().all(Option::is_none) && self.scalar == Scalar::F64;
