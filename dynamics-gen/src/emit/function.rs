@@ -2043,72 +2043,97 @@ pub const VECTOR_HELPERS: [&str; 9] = [
 ];
 
 /// The private helpers on `[T; 4]` (`T` the scalar) that packed bodies call
-/// ([`super::pack`]): lane by lane the scalar operations (`v4_fma` through
-/// [`mul_add_helper`]'s `mul_add`), which the optimiser reduces to the scalar code the lanes
-/// stand for; the dispatched copies call their AVX2 forms instead ([`super::dispatch`]).
-pub fn vector_helpers(scalar: Scalar) -> TokenStream {
+/// ([`super::pack`]), those of [`VECTOR_HELPERS`] that `called` says are called: lane by lane
+/// the scalar operations (`v4_fma` through [`mul_add_helper`]'s `mul_add`), which the
+/// optimiser reduces to the scalar code the lanes stand for; the dispatched copies call their
+/// AVX2 forms instead ([`super::dispatch`]).
+pub fn vector_helpers(scalar: Scalar, called: impl Fn(&str) -> bool) -> TokenStream {
     let t = Ident::new(scalar.as_str(), Span::call_site());
-    quote! {
-        /// `a·b + c` lane by lane, fused as [`Self::mul_add`] is.
-        #[inline(always)]
-        fn v4_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, a2, a3], [b0, b1, b2, b3], [c0, c1, c2, c3]) = (a, b, c);
-            [
-                Self::mul_add(a0, b0, c0),
-                Self::mul_add(a1, b1, c1),
-                Self::mul_add(a2, b2, c2),
-                Self::mul_add(a3, b3, c3),
-            ]
-        }
-        /// `a·b` lane by lane.
-        #[inline(always)]
-        fn v4_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
-            [a0 * b0, a1 * b1, a2 * b2, a3 * b3]
-        }
-        /// `a + b` lane by lane.
-        #[inline(always)]
-        fn v4_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
-            [a0 + b0, a1 + b1, a2 + b2, a3 + b3]
-        }
-        /// `a − b` lane by lane.
-        #[inline(always)]
-        fn v4_sub(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
-            [a0 - b0, a1 - b1, a2 - b2, a3 - b3]
-        }
-        /// `−a` lane by lane.
-        #[inline(always)]
-        fn v4_neg(a: [#t; 4]) -> [#t; 4] {
-            let [a0, a1, a2, a3] = a;
-            [-a0, -a1, -a2, -a3]
-        }
-        /// [`Self::v4_fma`] on the first two lanes (packs of two, `f64`); the other two 0.
-        #[inline(always)]
-        fn v2_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, ..], [b0, b1, ..], [c0, c1, ..]) = (a, b, c);
-            [Self::mul_add(a0, b0, c0), Self::mul_add(a1, b1, c1), 0.0, 0.0]
-        }
-        /// [`Self::v4_mul`] on the first two lanes; the other two 0.
-        #[inline(always)]
-        fn v2_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
-            [a0 * b0, a1 * b1, 0.0, 0.0]
-        }
-        /// [`Self::v4_add`] on the first two lanes; the other two 0.
-        #[inline(always)]
-        fn v2_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
-            let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
-            [a0 + b0, a1 + b1, 0.0, 0.0]
-        }
-        /// [`Self::v4_neg`] on the first two lanes; the other two 0.
-        #[inline(always)]
-        fn v2_neg(a: [#t; 4]) -> [#t; 4] {
-            let [a0, a1, ..] = a;
-            [-a0, -a1, 0.0, 0.0]
-        }
-    }
+    let helpers = [
+        quote! {
+            /// `a·b + c` lane by lane, fused as [`Self::mul_add`] is.
+            #[inline(always)]
+            fn v4_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, a2, a3], [b0, b1, b2, b3], [c0, c1, c2, c3]) = (a, b, c);
+                [
+                    Self::mul_add(a0, b0, c0),
+                    Self::mul_add(a1, b1, c1),
+                    Self::mul_add(a2, b2, c2),
+                    Self::mul_add(a3, b3, c3),
+                ]
+            }
+        },
+        quote! {
+            /// `a·b` lane by lane.
+            #[inline(always)]
+            fn v4_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+                [a0 * b0, a1 * b1, a2 * b2, a3 * b3]
+            }
+        },
+        quote! {
+            /// `a + b` lane by lane.
+            #[inline(always)]
+            fn v4_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+                [a0 + b0, a1 + b1, a2 + b2, a3 + b3]
+            }
+        },
+        quote! {
+            /// `a − b` lane by lane.
+            #[inline(always)]
+            fn v4_sub(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (a, b);
+                [a0 - b0, a1 - b1, a2 - b2, a3 - b3]
+            }
+        },
+        quote! {
+            /// `−a` lane by lane.
+            #[inline(always)]
+            fn v4_neg(a: [#t; 4]) -> [#t; 4] {
+                let [a0, a1, a2, a3] = a;
+                [-a0, -a1, -a2, -a3]
+            }
+        },
+        quote! {
+            /// [`Self::v4_fma`] on the first two lanes (packs of two, `f64`); the other two 0.
+            #[inline(always)]
+            fn v2_fma(a: [#t; 4], b: [#t; 4], c: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, ..], [b0, b1, ..], [c0, c1, ..]) = (a, b, c);
+                [Self::mul_add(a0, b0, c0), Self::mul_add(a1, b1, c1), 0.0, 0.0]
+            }
+        },
+        quote! {
+            /// [`Self::v4_mul`] on the first two lanes; the other two 0.
+            #[inline(always)]
+            fn v2_mul(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
+                [a0 * b0, a1 * b1, 0.0, 0.0]
+            }
+        },
+        quote! {
+            /// [`Self::v4_add`] on the first two lanes; the other two 0.
+            #[inline(always)]
+            fn v2_add(a: [#t; 4], b: [#t; 4]) -> [#t; 4] {
+                let ([a0, a1, ..], [b0, b1, ..]) = (a, b);
+                [a0 + b0, a1 + b1, 0.0, 0.0]
+            }
+        },
+        quote! {
+            /// [`Self::v4_neg`] on the first two lanes; the other two 0.
+            #[inline(always)]
+            fn v2_neg(a: [#t; 4]) -> [#t; 4] {
+                let [a0, a1, ..] = a;
+                [-a0, -a1, 0.0, 0.0]
+            }
+        },
+    ];
+    let called = VECTOR_HELPERS
+        .iter()
+        .zip(helpers)
+        .filter(|(name, _)| called(name))
+        .map(|(_, helper)| helper);
+    quote!(#(#called)*)
 }
 
 /// The private `isometry(r, p)` helper of a generated impl: a rotation matrix (by rows) and a
@@ -2306,6 +2331,16 @@ mod tests {
         let body = body_of(&single, "gravity");
         assert!(body.contains("Self::v4_fma_with::<WIDE") && !body.contains("v2_"));
         assert!(!single.contains("fn v2_"));
+    }
+
+    #[test]
+    fn only_the_vector_helpers_called_are_written() {
+        let code = super::vector_helpers(crate::Scalar::F64, |h| h == "v4_fma" || h == "v2_mul")
+            .to_string();
+        for name in super::VECTOR_HELPERS {
+            let written = code.contains(&format!("fn {name} ("));
+            assert_eq!(written, name == "v4_fma" || name == "v2_mul", "{name}");
+        }
     }
 
     /// Solo-12's code on its floating base, `functions` only, no runtime trait.

@@ -595,14 +595,8 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
     };
     // The vector helpers where a function calls them (`pack`: the poses' rows, alike
     // outputs), found in the functions themselves.
-    let vector_fns = if function::VECTOR_HELPERS
-        .iter()
-        .any(|h| dispatch::contains_ident(&items, h))
-    {
-        function::vector_helpers(options.scalar)
-    } else {
-        quote!()
-    };
+    let vector_fns =
+        function::vector_helpers(options.scalar, |h| dispatch::contains_ident(&items, h));
     let impl_block = quote! {
         #allow
         #[rustfmt::skip]
