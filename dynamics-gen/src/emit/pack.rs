@@ -31,11 +31,10 @@
 //! register for `f64`, a 128-bit one for `f32`) and the portable code to the scalar
 //! operations it had (an unused fourth lane is removed); an `f64` pack of two lanes (a
 //! humanoid's legs or arms) as `Self::v2_fma`, …, on the first two lanes, one 128-bit
-//! register in the copies. A seed is kept only where it
-//! saves instructions ([`MIN_SAVED`]), and only where the packs can be ordered (no lane reads
-//! another lane's value of the same pack, directly or through other packs): [`find`] checks
-//! that the graph with every pack contracted to one node has no cycle, and drops a seed that
-//! would make one.
+//! register in the copies. A seed is kept only where it saves instructions ([`MIN_SAVED`]),
+//! and only where the packs can be ordered (no lane reads another lane's value of the same
+//! pack, directly or through other packs): [`find`] checks that the graph with every pack
+//! contracted to one node has no cycle, and drops a seed that would make one.
 
 use crate::expr::{ExprGraph, ExprId, Node};
 
