@@ -298,7 +298,7 @@ macro_rules! bench_derivatives {
 }
 
 /// Central differences of `f` along the unit vectors of `x` (h = 1e-6), as
-/// `tests/generated_derivatives.rs` differentiates the reference (on a fixed base the tangent
+/// `tests/cases/generated_derivatives.rs` differentiates the reference (on a fixed base the tangent
 /// directions of q are its unit vectors).
 fn central(x: &[f64], f: impl Fn(&[f64]) -> DVector<f64>) -> DMatrix<f64> {
     let h = 1e-6;

@@ -11,9 +11,7 @@ use dynamics_tests::{row_major, rows, vecf};
 use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
 
-#[path = "support/tolerance.rs"]
-mod tolerance;
-use tolerance::{check, check_case};
+use crate::tolerance::{check, check_case};
 
 fn json(name: &str) -> Value {
     let text = std::fs::read_to_string(data_dir().join("reference").join(name)).expect("data");

@@ -13,9 +13,7 @@ use dynamics_tests::{row_major, rows, vecf};
 use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
 
-#[path = "support/tolerance.rs"]
-mod tolerance;
-use tolerance::{check, check_case};
+use crate::tolerance::{check, check_case};
 
 const ROBOTS: [&str; 4] = ["ur5", "panda", "rand7", "double_pendulum"];
 

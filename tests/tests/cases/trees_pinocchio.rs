@@ -13,7 +13,7 @@ use dynamics_tests::{data_dir, Spec, CASES};
 use serde_json::Value;
 
 /// `(rtol, atol)` of the comparisons of `case`, and `rtol` of its forward dynamics: f64's
-/// bound, or f32's (as `tests/reference_files.rs` takes them).
+/// bound, or f32's (as `reference_files.rs` takes them).
 fn tolerance(case: &dynamics_tests::Case) -> (f64, f64, f64) {
     if case.scalar == "f32" {
         (1e-4, 0.0, 1e-3)
