@@ -132,6 +132,15 @@ pub fn data_dir() -> std::path::PathBuf {
     std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data")
 }
 
+/// The JSON file `data/reference/<path>` (Pinocchio's and the Modern Robotics library's
+/// numbers; `data/reference/README.md` says how each was made), naming the file if it is
+/// missing or not JSON.
+pub fn reference_json(path: &str) -> serde_json::Value {
+    let file = data_dir().join("reference").join(path);
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", file.display()))
+}
+
 /// A generated robot, evaluated through f64 slices whatever its scalar type.
 pub trait GeneratedDynamics: Sync {
     /// The number of joint coordinates (mimic joints not counted).

@@ -20,7 +20,7 @@
 use dynamics_gen::expand::derivatives::expand_derivatives;
 use dynamics_gen::expand::expand;
 use dynamics_model::{Format, LoadOptions, Robot};
-use dynamics_tests::{data_dir, eval_graph, rows, vecf};
+use dynamics_tests::{data_dir, eval_graph, reference_json, rows, vecf};
 use serde_json::Value;
 
 const RTOL: f64 = 1e-8;
@@ -34,11 +34,6 @@ const QUANTITIES: [(&str, &str); 6] = [
     ("Minv", "M⁻¹"),
     ("dg_dq", "∂g/∂q"),
 ];
-
-fn json(path: &str) -> Value {
-    let text = std::fs::read_to_string(data_dir().join("reference").join(path)).expect("data");
-    serde_json::from_str(&text).expect("json")
-}
 
 /// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
 fn pin(k: usize, floating: bool) -> usize {
@@ -184,7 +179,7 @@ fn derivatives_reproduce_pinocchio_on_the_reference_robots() {
     let mut total = Worst::default();
     let mut robots = 0;
     for name in ["ur5", "panda", "rand7", "double_pendulum"] {
-        let data = json(&format!("{name}.derivatives.json"));
+        let data = reference_json(&format!("{name}.derivatives.json"));
         check_generator(&data);
         let tip = data["ee_frame"].as_str().expect("ee_frame");
         let options = LoadOptions {
@@ -204,7 +199,7 @@ fn derivatives_reproduce_pinocchio_on_the_reference_robots() {
         ("solo12", true),
         ("g1_29dof", true),
     ] {
-        let data = json(&format!("trees/{name}.derivatives.json"));
+        let data = reference_json(&format!("trees/{name}.derivatives.json"));
         check_generator(&data);
         assert_eq!(data["floating"].as_bool(), Some(floating), "{name}");
         let options = LoadOptions {
@@ -234,7 +229,7 @@ fn derivatives_reproduce_pinocchio_on_the_reference_robots() {
 
 #[test]
 fn derivatives_reproduce_pinocchio_on_random_chains() {
-    let data = json("random_chains.derivatives.json");
+    let data = reference_json("random_chains.derivatives.json");
     check_generator(&data);
     let chains = data["chains"].as_array().expect("chains");
     assert!(chains.len() >= 100, "{} random chains", chains.len());

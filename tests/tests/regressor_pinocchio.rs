@@ -14,16 +14,11 @@
 
 use dynamics_gen::expand::regressor::{expand_regressor, Regressor};
 use dynamics_model::{Format, LoadOptions, Robot};
-use dynamics_tests::{data_dir, eval_graph, rows, vecf};
+use dynamics_tests::{data_dir, eval_graph, reference_json, rows, vecf};
 use serde_json::Value;
 
 const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;
-
-fn json(path: &str) -> Value {
-    let text = std::fs::read_to_string(data_dir().join("reference").join(path)).expect("data");
-    serde_json::from_str(&text).expect("json")
-}
 
 /// Pinocchio's row of our velocity index `k` (floating base: 0..3 ↔ 3..6).
 fn pin(k: usize, floating: bool) -> usize {
@@ -123,7 +118,7 @@ fn check_generator(data: &Value) {
 fn regressor_reproduces_pinocchio_on_the_reference_robots() {
     let mut w = Worst::default();
     for name in ["ur5", "panda", "rand7", "double_pendulum"] {
-        let data = json(&format!("{name}.regressor.json"));
+        let data = reference_json(&format!("{name}.regressor.json"));
         check_generator(&data);
         let path = data_dir().join(format!("robots/{name}.urdf"));
         let robot = dynamics_model::load_file(&path, &LoadOptions::default()).expect("loads");
@@ -143,7 +138,7 @@ fn regressor_reproduces_pinocchio_on_the_reference_robots() {
         ("solo12", true),
         ("g1_29dof", true),
     ] {
-        let data = json(&format!("trees/{name}.regressor.json"));
+        let data = reference_json(&format!("trees/{name}.regressor.json"));
         check_generator(&data);
         let options = LoadOptions {
             floating_base: floating,
@@ -175,9 +170,9 @@ fn regressor_reproduces_pinocchio_on_the_reference_robots() {
 
 #[test]
 fn regressor_reproduces_pinocchio_on_random_chains() {
-    let data = json("random_chains.regressor.json");
+    let data = reference_json("random_chains.regressor.json");
     check_generator(&data);
-    let urdfs = json("random_chains.derivatives.json");
+    let urdfs = reference_json("random_chains.derivatives.json");
     let chains = data["chains"].as_array().expect("chains");
     assert!(chains.len() >= 100, "{} random chains", chains.len());
     let mut w = Worst::default();

@@ -9,9 +9,8 @@ use dynamics_gen::expand::{expand, ForwardRoute, Q, QD, QDD, TAU};
 use dynamics_gen::expr::{ExprId, Input};
 use dynamics_model::random::{random_mimics, random_tree, Rng, TreeSpec};
 use dynamics_tests::vecf;
-use dynamics_tests::{data_dir, Spec, CASES};
+use dynamics_tests::{reference_json, Spec, CASES};
 use nalgebra::Vector6;
-use serde_json::Value;
 
 #[test]
 fn generated_talos_grippers_reproduce_pinocchio() {
@@ -19,9 +18,7 @@ fn generated_talos_grippers_reproduce_pinocchio() {
         .iter()
         .find(|c| matches!(c.spec, Spec::UrdfMimic("talos_upper_body_mimic")))
         .expect("the mimic TALOS is compiled");
-    let path = data_dir().join("reference/trees/talos_upper_body_mimic.json");
-    let data: Value =
-        serde_json::from_str(&std::fs::read_to_string(path).expect("data")).expect("json");
+    let data = reference_json("trees/talos_upper_body_mimic.json");
     let names: Vec<&str> = data["coordinate_names"]
         .as_array()
         .expect("names")

@@ -8,7 +8,7 @@
 //! as in `generated_vs_reference`.
 
 use dynamics_model::{LoadOptions, Robot};
-use dynamics_tests::{data_dir, Spec, CASES};
+use dynamics_tests::{data_dir, reference_json, Spec, CASES};
 use dynamics_tests::{row_major, rows, vecf};
 use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
@@ -16,11 +16,6 @@ use serde_json::Value;
 use crate::tolerance::{check, check_case};
 
 const ROBOTS: [&str; 4] = ["ur5", "panda", "rand7", "double_pendulum"];
-
-fn json(name: &str) -> Value {
-    let text = std::fs::read_to_string(data_dir().join("reference").join(name)).expect("data");
-    serde_json::from_str(&text).expect("json")
-}
 
 /// A Pinocchio Jacobian (rows `(v, ω)`, row-major) in our row order `(ω, v)`, row-major.
 fn pin_jacobian(v: &Value) -> Vec<f64> {
@@ -52,7 +47,7 @@ fn robot(name: &str, data: &Value) -> Robot {
 #[test]
 fn reference_jacobians_reproduce_pinocchio() {
     for name in ROBOTS {
-        let data = json(&format!("{name}.jacobians.json"));
+        let data = reference_json(&format!("{name}.jacobians.json"));
         assert_eq!(data["generator"]["pinocchio"].as_str(), Some("4.1.0"));
         let robot = robot(name, &data);
         let mut worst = [0.0f64; 2];
@@ -87,7 +82,7 @@ fn generated_jacobians_reproduce_pinocchio() {
         if !ROBOTS.contains(&name) {
             continue;
         }
-        let data = json(&format!("{name}.jacobians.json"));
+        let data = reference_json(&format!("{name}.jacobians.json"));
         assert_eq!(
             case.spec.robot().end_effector.name,
             data["ee_frame"].as_str().expect("ee_frame"),
@@ -126,7 +121,7 @@ fn generated_jacobians_reproduce_pinocchio() {
 
 #[test]
 fn reference_with_armature_reproduces_pinocchio() {
-    let data = json("panda.jacobians.json");
+    let data = reference_json("panda.jacobians.json");
     let case = &data["armature_case"];
     let mut robot = robot("panda", &data);
     let armature = vecf(&case["armature"]);
@@ -136,7 +131,7 @@ fn reference_with_armature_reproduces_pinocchio() {
         joint.gear_ratio = 1.0;
         assert_eq!(joint.armature(), *a);
     }
-    let g = Vector3::from_vec(vecf(&json("panda.json")["gravity"]));
+    let g = Vector3::from_vec(vecf(&reference_json("panda.json")["gravity"]));
     let zero6 = Vector6::zeros();
     let samples = case["samples"].as_array().expect("samples");
     assert_eq!(samples.len(), 10);
@@ -171,7 +166,7 @@ fn reference_with_armature_reproduces_pinocchio() {
 /// by build.rs) against Pinocchio's `rnea`, `crba` and `aba` with `model.armature` set.
 #[test]
 fn generated_with_armature_reproduces_pinocchio() {
-    let data = json("panda.jacobians.json");
+    let data = reference_json("panda.jacobians.json");
     let case = &data["armature_case"];
     let generated = dynamics_tests::CASES
         .iter()

@@ -6,17 +6,12 @@
 //! (q̈ 1e-3·‖y‖∞), as in `generated_vs_reference`.
 
 use dynamics_model::LoadOptions;
-use dynamics_tests::{data_dir, Spec, CASES};
+use dynamics_tests::{data_dir, reference_json, Spec, CASES};
 use dynamics_tests::{row_major, rows, vecf};
 use nalgebra::{Vector3, Vector6};
 use serde_json::Value;
 
 use crate::tolerance::{check, check_case};
-
-fn json(name: &str) -> Value {
-    let text = std::fs::read_to_string(data_dir().join("reference").join(name)).expect("data");
-    serde_json::from_str(&text).expect("json")
-}
 
 #[test]
 fn reference_implementation_reproduces_pinocchio() {
@@ -26,7 +21,7 @@ fn reference_implementation_reproduces_pinocchio() {
         ("double_pendulum.json", "double_pendulum"),
         ("rand7.json", "rand7"),
     ] {
-        let data = json(file);
+        let data = reference_json(file);
         let tip = data["ee_frame"].as_str().expect("ee_frame");
         let path = data_dir().join(format!("robots/{urdf}.urdf"));
         let options = LoadOptions {
@@ -89,7 +84,7 @@ fn christoffel_coriolis_matrix_equals_pinocchios() {
         ("panda.json", "panda"),
         ("rand7.json", "rand7"),
     ] {
-        let data = json(file);
+        let data = reference_json(file);
         let path = data_dir().join(format!("robots/{urdf}.urdf"));
         let robot = dynamics_model::load_file(&path, &LoadOptions::default()).expect("loads");
         let mut worst = 0.0f64;
@@ -140,7 +135,7 @@ fn toml_robots_and_their_code_reproduce_the_modern_robotics_library() {
             .iter()
             .find(|c| matches!(c.spec, Spec::Shipped(n) if n == name) && c.scalar == "f64")
             .expect("compiled");
-        let data = json(file);
+        let data = reference_json(file);
         let g = Vector3::from_vec(vecf(&data["model"]["g"]));
         for s in data["samples"].as_array().expect("samples") {
             let q = vecf(&s["thetalist"]);
@@ -212,7 +207,7 @@ fn ur5_with_continuous_joints_has_the_same_dynamics() {
         assert_eq!((lb.velocity, lb.effort), (la.velocity, la.effort));
         assert!(lb.velocity.is_some() && lb.effort.is_some());
     }
-    let data = json("ur5.json");
+    let data = reference_json("ur5.json");
     let g = Vector3::new(0.0, 0.0, -9.81);
     for s in data["samples"].as_array().expect("samples") {
         let (q, qd, qdd) = (vecf(&s["q"]), vecf(&s["qd"]), vecf(&s["qdd"]));

@@ -9,7 +9,7 @@
 //! (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`); ours angular first. [`pin`] maps the indices.
 
 use dynamics_tests::vecf;
-use dynamics_tests::{data_dir, Spec, CASES};
+use dynamics_tests::{reference_json, Spec, CASES};
 use serde_json::Value;
 
 /// `(rtol, atol)` of the comparisons of `case`, and `rtol` of its forward dynamics: f64's
@@ -20,12 +20,6 @@ fn tolerance(case: &dynamics_tests::Case) -> (f64, f64, f64) {
     } else {
         (1e-9, 1e-12, 1e-9)
     }
-}
-
-fn json(name: &str) -> Value {
-    let path = data_dir().join(format!("reference/trees/{name}.json"));
-    let text = std::fs::read_to_string(&path).expect("reference data");
-    serde_json::from_str(&text).expect("json")
 }
 
 /// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
@@ -50,7 +44,7 @@ fn generated_trees_reproduce_pinocchio() {
         let Spec::UrdfTree(name, floating) = case.spec else {
             continue;
         };
-        let data = json(name);
+        let data = reference_json(&format!("trees/{name}.json"));
         assert_eq!(data["floating"].as_bool(), Some(floating), "{name}");
         let robot = case.spec.robot();
         let mut names: Vec<&str> = data["joint_names"]
@@ -133,7 +127,7 @@ fn generated_frames_reproduce_pinocchio() {
         let Spec::UrdfTree(name, floating) = case.spec else {
             continue;
         };
-        let data = json(&format!("{name}.frames"));
+        let data = reference_json(&format!("trees/{name}.frames.json"));
         let names: Vec<&str> = data["frames"]
             .as_array()
             .expect("frames")
