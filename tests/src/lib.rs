@@ -734,6 +734,25 @@ pub fn vecf(v: &serde_json::Value) -> Vec<f64> {
         .collect()
 }
 
+/// Pinocchio's velocity index of our velocity index `k`. Pinocchio's free flyer orders the
+/// base's linear part first (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`), ours the angular
+/// part: with a floating base 0..3 ↔ 3..6, otherwise the same index.
+pub fn pinocchio_index(k: usize, floating: bool) -> usize {
+    match k {
+        0..=2 if floating => k + 3,
+        3..=5 if floating => k - 3,
+        _ => k,
+    }
+}
+
+/// A Pinocchio velocity-space vector (a JSON array) in our order ([`pinocchio_index`]).
+pub fn from_pinocchio_order(v: &serde_json::Value, floating: bool) -> Vec<f64> {
+    let x = vecf(v);
+    (0..x.len())
+        .map(|k| x[pinocchio_index(k, floating)])
+        .collect()
+}
+
 /// A JSON matrix (a list of rows) as its entries, row-major.
 pub fn rows(v: &serde_json::Value) -> Vec<f64> {
     v.as_array().expect("rows").iter().flat_map(vecf).collect()

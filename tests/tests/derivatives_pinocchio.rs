@@ -20,7 +20,8 @@
 use dynamics_gen::expand::derivatives::expand_derivatives;
 use dynamics_gen::expand::expand;
 use dynamics_model::{Format, LoadOptions, Robot};
-use dynamics_tests::{data_dir, eval_graph, reference_json, rows, vecf};
+use dynamics_tests::{data_dir, eval_graph, from_pinocchio_order, pinocchio_index};
+use dynamics_tests::{reference_json, rows, vecf};
 use serde_json::Value;
 
 const RTOL: f64 = 1e-8;
@@ -35,27 +36,12 @@ const QUANTITIES: [(&str, &str); 6] = [
     ("dg_dq", "∂g/∂q"),
 ];
 
-/// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
-fn pin(k: usize, floating: bool) -> usize {
-    match k {
-        0..=2 if floating => k + 3,
-        3..=5 if floating => k - 3,
-        _ => k,
-    }
-}
-
-/// A Pinocchio vector in our order.
-fn ours_vec(v: &Value, floating: bool) -> Vec<f64> {
-    let x = vecf(v);
-    (0..x.len()).map(|k| x[pin(k, floating)]).collect()
-}
-
 /// A Pinocchio nv×nv matrix in our order (rows and columns permuted), row-major.
 fn ours_mat(v: &Value, nv: usize, floating: bool) -> Vec<f64> {
     let x = rows(v);
     assert_eq!(x.len(), nv * nv, "matrix size");
     (0..nv * nv)
-        .map(|e| x[pin(e / nv, floating) * nv + pin(e % nv, floating)])
+        .map(|e| x[pinocchio_index(e / nv, floating) * nv + pinocchio_index(e % nv, floating)])
         .collect()
 }
 
@@ -137,9 +123,9 @@ fn compare(what: &str, robot: &Robot, floating: bool, samples: &[Value]) -> Wors
     for (k, s) in samples.iter().enumerate() {
         let q = vecf(&s["q"]);
         assert_eq!(q.len(), robot.nq(), "{what}: nq");
-        let v = ours_vec(&s["v"], floating);
-        let a = ours_vec(&s["a"], floating);
-        let tau = ours_vec(&s["tau"], floating);
+        let v = from_pinocchio_order(&s["v"], floating);
+        let a = from_pinocchio_order(&s["a"], floating);
+        let tau = from_pinocchio_order(&s["tau"], floating);
         let values = eval_graph(&der.graph, &roots, [&q, &v, &a, &tau]);
         for (slot, (key, name)) in QUANTITIES.iter().enumerate() {
             let x = &values[slot * nv * nv..(slot + 1) * nv * nv];

@@ -14,25 +14,12 @@
 
 use dynamics_gen::expand::regressor::{expand_regressor, Regressor};
 use dynamics_model::{Format, LoadOptions, Robot};
-use dynamics_tests::{data_dir, eval_graph, reference_json, rows, vecf};
+use dynamics_tests::{data_dir, eval_graph, from_pinocchio_order, pinocchio_index};
+use dynamics_tests::{reference_json, rows, vecf};
 use serde_json::Value;
 
 const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;
-
-/// Pinocchio's row of our velocity index `k` (floating base: 0..3 ↔ 3..6).
-fn pin(k: usize, floating: bool) -> usize {
-    match k {
-        0..=2 if floating => k + 3,
-        3..=5 if floating => k - 3,
-        _ => k,
-    }
-}
-
-fn ours_vec(v: &Value, floating: bool) -> Vec<f64> {
-    let x = vecf(v);
-    (0..x.len()).map(|k| x[pin(k, floating)]).collect()
-}
 
 /// Worst `‖x − y‖∞ / ‖y‖∞` seen, for the report.
 #[derive(Default)]
@@ -67,15 +54,15 @@ fn compare(
     let nb = r.base_columns.len();
     for (k, s) in samples.iter().enumerate() {
         let q = vecf(&s["q"]);
-        let v = ours_vec(&s["v"], floating);
-        let a = ours_vec(&s["a"], floating);
-        let tau = ours_vec(&s["tau"], floating);
+        let v = from_pinocchio_order(&s["v"], floating);
+        let a = from_pinocchio_order(&s["a"], floating);
+        let tau = from_pinocchio_order(&s["tau"], floating);
         let none: &[f64] = &[];
         let ys = eval_graph(&r.graph, &r.y, [&q, &v, &a, none]);
         let pin_y = rows(&s["Y"]);
         assert_eq!(pin_y.len(), nv * p, "{what}: Y size");
         let pin_y: Vec<f64> = (0..nv * p)
-            .map(|e| pin_y[pin(e / p, floating) * p + e % p])
+            .map(|e| pin_y[pinocchio_index(e / p, floating) * p + e % p])
             .collect();
         w.y =
             w.y.max(close(&format!("{what} sample {k}: Y"), &ys, &pin_y));

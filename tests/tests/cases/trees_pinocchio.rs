@@ -6,11 +6,11 @@
 //! Solo-12 (`f32_tree_solo12`) at f32's tolerances, 1e-4·‖y‖∞ (forward dynamics 1e-3).
 //!
 //! Pinocchio's free flyer orders the base velocity and wrench linear part first
-//! (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`); ours angular first. [`pin`] maps the indices.
+//! (`v = (v_b, ω_b, θ̇)`, `τ = (f_b, m_b, τ_θ)`); ours angular first.
+//! [`dynamics_tests::pinocchio_index`] maps the indices.
 
 use dynamics_tests::vecf;
-use dynamics_tests::{reference_json, Spec, CASES};
-use serde_json::Value;
+use dynamics_tests::{from_pinocchio_order, pinocchio_index, reference_json, Spec, CASES};
 
 /// `(rtol, atol)` of the comparisons of `case`, and `rtol` of its forward dynamics: f64's
 /// bound, or f32's (as `reference_files.rs` takes them).
@@ -20,21 +20,6 @@ fn tolerance(case: &dynamics_tests::Case) -> (f64, f64, f64) {
     } else {
         (1e-9, 1e-12, 1e-9)
     }
-}
-
-/// Pinocchio's index of our velocity index `k` (floating base: 0..3 ↔ 3..6).
-fn pin(k: usize, floating: bool) -> usize {
-    match k {
-        0..=2 if floating => k + 3,
-        3..=5 if floating => k - 3,
-        _ => k,
-    }
-}
-
-/// A Pinocchio vector in our order.
-fn ours(v: &Value, floating: bool) -> Vec<f64> {
-    let x = vecf(v);
-    (0..x.len()).map(|k| x[pin(k, floating)]).collect()
 }
 
 #[test]
@@ -67,8 +52,8 @@ fn generated_trees_reproduce_pinocchio() {
             .enumerate()
         {
             let q = vecf(&s["q"]);
-            let v = ours(&s["v"], floating);
-            let a = ours(&s["a"], floating);
+            let v = from_pinocchio_order(&s["v"], floating);
+            let a = from_pinocchio_order(&s["a"], floating);
             let what = |w: &str| format!("{} sample {k}: {w}", case.module);
             let (rtol, atol, rtol_fd) = tolerance(case);
             let check_with = |rtol: f64, w: &str, x: &[f64], y: &[f64]| {
@@ -80,23 +65,42 @@ fn generated_trees_reproduce_pinocchio() {
             let rows = s["M"].as_array().expect("M");
             let m_pin: Vec<f64> = (0..nv * nv)
                 .map(|e| {
-                    let (i, j) = (pin(e / nv, floating), pin(e % nv, floating));
+                    let (i, j) = (
+                        pinocchio_index(e / nv, floating),
+                        pinocchio_index(e % nv, floating),
+                    );
                     rows[i][j].as_f64().expect("number")
                 })
                 .collect();
             let m_ours: Vec<f64> = (0..nv * nv).map(|e| m[(e / nv, e % nv)]).collect();
             worst[0] = worst[0].max(check("M", &m_ours, &m_pin));
             let c = case.imp.coriolis(&q, &v);
-            worst[1] = worst[1].max(check("c", c.as_slice(), &ours(&s["c"], floating)));
+            worst[1] = worst[1].max(check(
+                "c",
+                c.as_slice(),
+                &from_pinocchio_order(&s["c"], floating),
+            ));
             let g = case.imp.gravity(&q);
-            worst[2] = worst[2].max(check("g", g.as_slice(), &ours(&s["g"], floating)));
+            worst[2] = worst[2].max(check(
+                "g",
+                g.as_slice(),
+                &from_pinocchio_order(&s["g"], floating),
+            ));
             let nle: Vec<f64> = c.iter().zip(g.iter()).map(|(x, y)| x + y).collect();
-            worst[3] = worst[3].max(check("nle", &nle, &ours(&s["nle"], floating)));
+            worst[3] = worst[3].max(check(
+                "nle",
+                &nle,
+                &from_pinocchio_order(&s["nle"], floating),
+            ));
             let tau = case.imp.inverse_dynamics(&q, &v, &a);
-            worst[4] = worst[4].max(check("τ", tau.as_slice(), &ours(&s["tau"], floating)));
-            let tau_rand = ours(&s["tau_rand"], floating);
+            worst[4] = worst[4].max(check(
+                "τ",
+                tau.as_slice(),
+                &from_pinocchio_order(&s["tau"], floating),
+            ));
+            let tau_rand = from_pinocchio_order(&s["tau_rand"], floating);
             let fd = case.imp.forward_dynamics(&q, &v, &tau_rand);
-            let a_fd = ours(&s["a_fd"], floating);
+            let a_fd = from_pinocchio_order(&s["a_fd"], floating);
             worst[5] = worst[5].max(check_with(rtol_fd, "a_fd", fd.as_slice(), &a_fd));
             // Structural zeros are exact zeros.
             let zeros = m_ours.iter().filter(|x| **x == 0.0).count();
@@ -177,7 +181,7 @@ fn generated_frames_reproduce_pinocchio() {
                     let theirs: Vec<f64> = (0..6 * nv)
                         .map(|e| {
                             let (r, c) = (e / nv, e % nv);
-                            rows[(r + 3) % 6][pin(c, floating)]
+                            rows[(r + 3) % 6][pinocchio_index(c, floating)]
                                 .as_f64()
                                 .expect("number")
                         })
