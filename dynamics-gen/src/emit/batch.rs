@@ -145,6 +145,7 @@ pub fn batch_functions(
                 lanes,
                 ready: &[],
                 pack: ALIKE_PACKS,
+                park: lanes.is_none() && options.cpu_dispatch && !options.no_std,
                 plan: None,
                 reads_jacobian: &[],
             }

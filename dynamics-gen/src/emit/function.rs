@@ -121,6 +121,9 @@ pub struct FunctionBody<'a> {
     /// ([`super::pack`], [`Packs`]). With `std` (`f64` or `f32`), in a single-state body
     /// that is not split into parts.
     pub pack: Packs,
+    /// Long-lived values parked in memory of the body's own ([`super::park`]): in bodies the
+    /// CPU dispatch copies (`std`), which allow `unsafe` code.
+    pub park: bool,
     /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
     /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].
     pub plan: Option<&'a Plan>,
@@ -223,10 +226,10 @@ const STORED_MIN_LIVE: usize = 64;
 const PART_LETS: usize = 512;
 
 /// A `let` statement of a body, the nodes it names and the named nodes it reads.
-struct Statement {
-    defined: Vec<(Ident, ExprId)>,
-    tokens: TokenStream,
-    reads: Vec<ExprId>,
+pub(super) struct Statement {
+    pub(super) defined: Vec<(Ident, ExprId)>,
+    pub(super) tokens: TokenStream,
+    pub(super) reads: Vec<ExprId>,
 }
 
 /// `body` in the demand-driven order of [`super::schedule`], with `last_use` (the index of
@@ -447,7 +450,7 @@ fn chunked(
     bind: &[Binding],
     split: Option<(&Ident, Scalar)>,
 ) -> TokenStream {
-    let Some((self_ty, scalar)) = split.filter(|_| body.len() > MAX_UNSPLIT_LETS) else {
+    let Some((self_ty, scalar)) = split else {
         return blocks(body, 0, last_use);
     };
     let t = Ident::new(scalar.as_str(), Span::call_site());
@@ -501,9 +504,11 @@ fn chunked(
 /// The names that `part` (statements `..end` of the body) defines and later statements or
 /// the outputs read.
 fn exported(part: &[Statement], end: usize, last_use: &[usize]) -> Vec<Ident> {
+    // A parked value read back in `part` is defined twice (`super::park`): named once.
+    let mut named = std::collections::HashSet::new();
     part.iter()
         .flat_map(|s| s.defined.iter())
-        .filter(|(_, id)| last_use[id.index()] >= end)
+        .filter(|(_, id)| last_use[id.index()] >= end && named.insert(*id))
         .map(|(name, _)| name.clone())
         .collect()
 }
@@ -1028,8 +1033,28 @@ impl FunctionBody<'_> {
         let value = renumber(&mut body, &mut bind, value);
         let split = self
             .self_ty
-            .filter(|_| self.lanes.is_none())
+            .filter(|_| self.lanes.is_none() && body.len() > MAX_UNSPLIT_LETS)
             .map(|t| (t, self.scalar));
+        if self.park
+            && self.lanes.is_none()
+            && split.is_none()
+            && body.len() >= super::park::MIN_STATEMENTS
+        {
+            let width = |id: ExprId| match &packed {
+                Some(p) if id.index() >= p.nodes => {
+                    let lanes = &p.packing.packs[id.index() - p.nodes].lanes;
+                    if self.two_lanes(lanes) {
+                        super::park::Width::Two
+                    } else {
+                        super::park::Width::Four
+                    }
+                }
+                _ => super::park::Width::One,
+            };
+            let (buffer, parked) = super::park::park(body, &mut last_use, width, self.scalar);
+            stmts.extend(buffer);
+            body = parked;
+        }
         stmts.extend(chunked(body, &last_use, &bind, split));
         stmts.extend(value);
         stmts
@@ -1285,8 +1310,14 @@ impl FunctionBody<'_> {
     /// G1's forward dynamics 57,975 → 55,459 bytes, `docs/performance.md`, fifty-seventh
     /// session), `v4_…` otherwise (`f32`'s four lanes are one 128-bit register already).
     fn vector_op(&self, lanes: &super::pack::Lanes, op: &str) -> Ident {
-        let two = lanes[2..].iter().all(Option::is_none) && self.scalar == Scalar::F64;
+        let two = self.two_lanes(lanes);
         format_ident!("{}_{}", if two { "v2" } else { "v4" }, op)
+    }
+
+    /// Whether a pack of `lanes` is written with the `v2_…` helpers ([`Self::vector_op`]):
+    /// `[a, b, 0, 0]`.
+    fn two_lanes(&self, lanes: &super::pack::Lanes) -> bool {
+        lanes[2..].iter().all(Option::is_none) && self.scalar == Scalar::F64
     }
 
     /// The tokens of a pack's operand, its reads noted.

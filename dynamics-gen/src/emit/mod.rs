@@ -13,6 +13,7 @@ pub mod function;
 pub mod given_sin_cos;
 pub mod literal;
 pub mod pack;
+pub mod park;
 pub mod provenance;
 pub mod regressor;
 pub mod schedule;
@@ -798,6 +799,7 @@ fn body_tokens_with(
         lanes: None,
         ready: &[],
         pack,
+        park: options.cpu_dispatch && !options.no_std,
         plan: None,
         reads_jacobian,
     }

@@ -1,0 +1,167 @@
+//! Long-lived values parked in memory of the body's own.
+//!
+//! A value that a long body reads again [`GAP`] statements or more after its definition (or
+//! its last read) is written, just after its definition, into a buffer local to the body,
+//! and read back (`let t = …;`, shadowing the name) just before the read after the gap. The
+//! buffer is written through one copy of its address and read through another, both passed
+//! through `core::hint::black_box` at the top of the body (before anything is written, so the
+//! barrier orders nothing): the optimiser cannot tell that the two point to the same memory,
+//! so it cannot forward a write to its read and keeps the value in memory, as written.
+//!
+//! Why: such values are spilled anyway (the articulated-body algorithm's pass-2 results wait
+//! for pass 3), and the register allocator addresses its spill slots from `rsp`, which costs
+//! a SIB byte on every access and, in a frame of kilobytes, a 32-bit displacement: G1's forward
+//! dynamics (floating base) made 2,621 of its 7,926 instructions address the stack, 2,167 of
+//! them with 32-bit displacements, and ran at the rate this core fetches straight-line code
+//! from beyond its 32 KB instruction cache (`docs/performance.md`, fifty-ninth session). The
+//! buffer is addressed from a register (no SIB byte), and the values' reads land next to
+//! their uses, freeing registers across the gap. Measured (the AVX-512 copy, a scratch
+//! binary with old and new code twice each, medians of 11 interleaved rounds, 2026-12-07,
+//! Zen 4): G1's forward dynamics 55,472 → 51,104 bytes, 7,944 → 7,546 instructions, 973–976 →
+//! 888–896 ns (−8.5 %), the same bits; the gap tried from 50 to 1,000 statements (150–300
+//! best; 50: −2 %, 1,000: −3 %). A `black_box` barrier before each read instead of the two
+//! addresses: 53,328 bytes but +3 % time (the barriers order every memory access); volatile
+//! reads: 58,576 bytes, +11 %.
+//!
+//! Only in bodies that are dispatched to CPU copies (`std`, CPU dispatch on), which carry
+//! `#[allow(unsafe_code)]` already: the writes and reads are `unsafe` (a raw pointer into an
+//! uninitialised buffer, each slot read only after its write: reads follow writes in the one
+//! straight-line body), and a buffer initialised instead would cost its zeroing.
+
+use super::function::Statement;
+use crate::expr::ExprId;
+use crate::options::Scalar;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+/// A value read again this many statements or more after its definition or its last read is
+/// parked (see the module's measurements).
+pub(super) const GAP: usize = 150;
+
+/// Bodies of fewer statements are left as they are: no value in them waits [`GAP`]
+/// statements for long (the arms' functions but their forward dynamics).
+pub(super) const MIN_STATEMENTS: usize = 256;
+
+/// What a named value is: a scalar, or a pack of two lanes (`f64`, the `v2_…` packs of
+/// [`super::function`]: `[a, b, 0, 0]`, two stored) or of four.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Width {
+    One,
+    Two,
+    Four,
+}
+
+impl Width {
+    fn lanes(self) -> usize {
+        match self {
+            Width::One => 1,
+            Width::Two => 2,
+            Width::Four => 4,
+        }
+    }
+}
+
+/// `body` with its long-lived values parked (see the module), and the statements that make
+/// the buffer (empty when nothing is parked); `last_use` renumbered to the new body.
+pub(super) fn park(
+    body: Vec<Statement>,
+    last_use: &mut [usize],
+    width: impl Fn(ExprId) -> Width,
+    scalar: Scalar,
+) -> (TokenStream, Vec<Statement>) {
+    // Per node, the statements that read it, in order.
+    let mut reads: Vec<Vec<usize>> = vec![Vec::new(); last_use.len()];
+    for (at, s) in body.iter().enumerate() {
+        for &id in &s.reads {
+            let r = &mut reads[id.index()];
+            if r.last() != Some(&at) {
+                r.push(at);
+            }
+        }
+    }
+    let t = Ident::new(scalar.as_str(), Span::call_site());
+    // Per statement, the writes after it and the reads before it.
+    let mut writes: Vec<Vec<(ExprId, TokenStream)>> = vec![Vec::new(); body.len()];
+    let mut loads: Vec<Vec<(Ident, ExprId, TokenStream)>> = vec![Vec::new(); body.len()];
+    let mut len = 0usize;
+    for (at, s) in body.iter().enumerate() {
+        for (name, id) in &s.defined {
+            let mut last = at;
+            let mut after_gaps = Vec::new();
+            for &r in &reads[id.index()] {
+                if r >= last + GAP {
+                    after_gaps.push(r);
+                }
+                last = r;
+            }
+            if after_gaps.is_empty() {
+                continue;
+            }
+            let w = width(*id);
+            let offset = len.next_multiple_of(w.lanes());
+            len = offset + w.lanes();
+            let k = Literal::usize_unsuffixed(offset);
+            let (write, load) = match w {
+                Width::One => (
+                    quote!(unsafe { park_w.add(#k).write(#name) };),
+                    quote!(let #name = unsafe { park_r.add(#k).read() };),
+                ),
+                Width::Two => (
+                    quote!(unsafe { park_w.add(#k).cast::<[#t; 2]>().write([#name[0], #name[1]]) };),
+                    quote! {
+                        let #name = {
+                            let [a, b] = unsafe { park_r.add(#k).cast::<[#t; 2]>().read() };
+                            [a, b, 0.0, 0.0]
+                        };
+                    },
+                ),
+                Width::Four => (
+                    quote!(unsafe { park_w.add(#k).cast::<[#t; 4]>().write(#name) };),
+                    quote!(let #name = unsafe { park_r.add(#k).cast::<[#t; 4]>().read() };),
+                ),
+            };
+            writes[at].push((*id, write));
+            for r in after_gaps {
+                loads[r].push((name.clone(), *id, load.clone()));
+            }
+        }
+    }
+    if len == 0 {
+        return (TokenStream::new(), body);
+    }
+    let mut parked = Vec::with_capacity(body.len());
+    for (at, s) in body.into_iter().enumerate() {
+        for (name, id, tokens) in std::mem::take(&mut loads[at]) {
+            parked.push(Statement {
+                defined: vec![(name, id)],
+                tokens,
+                reads: Vec::new(),
+            });
+        }
+        parked.push(s);
+        for (id, tokens) in std::mem::take(&mut writes[at]) {
+            parked.push(Statement {
+                defined: Vec::new(),
+                tokens,
+                reads: vec![id],
+            });
+        }
+    }
+    for (at, s) in parked.iter().enumerate() {
+        for &id in &s.reads {
+            let l = &mut last_use[id.index()];
+            if *l != usize::MAX {
+                *l = at;
+            }
+        }
+    }
+    let len = Literal::usize_unsuffixed(len);
+    let prelude = quote! {
+        #[repr(C, align(16))]
+        struct Parked([#t; #len]);
+        let mut parked = ::core::mem::MaybeUninit::<Parked>::uninit();
+        let park_w: *mut #t = ::core::hint::black_box(parked.as_mut_ptr().cast());
+        let park_r: *const #t = ::core::hint::black_box(park_w);
+    };
+    (prelude, parked)
+}
