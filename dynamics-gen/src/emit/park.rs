@@ -165,3 +165,86 @@ pub(super) fn park(
     };
     (prelude, parked)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{park, Width, GAP, MIN_STATEMENTS};
+    use crate::expr::ExprId;
+    use crate::options::Scalar;
+    use quote::{format_ident, quote};
+
+    /// `let t{k} = …;` reading `reads`, or a statement defining nothing.
+    fn statement(defined: Option<u32>, reads: &[u32]) -> super::Statement {
+        super::Statement {
+            defined: defined
+                .map(|k| (format_ident!("t{}", k), ExprId(k)))
+                .into_iter()
+                .collect(),
+            tokens: match defined {
+                Some(k) => {
+                    let t = format_ident!("t{}", k);
+                    quote!(let #t = 0.0;)
+                }
+                None => quote!(other();),
+            },
+            reads: reads.iter().map(|&k| ExprId(k)).collect(),
+        }
+    }
+
+    #[test]
+    fn a_value_read_again_after_the_gap_is_written_once_and_read_back_before_that_read() {
+        // t0 read at 1 and again at GAP + 1 (parked); t1 read at 2 and GAP (not: its reads
+        // are never GAP apart); t2, a pack of two lanes, read at GAP + 5 and GAP + 6 (parked,
+        // read back once); t3 read at the end only, by the outputs (not parked).
+        let n = MIN_STATEMENTS;
+        let mut body: Vec<_> = (0..n).map(|_| statement(None, &[])).collect();
+        body[0] = statement(Some(0), &[]);
+        body[1] = statement(Some(1), &[0]);
+        body[2] = statement(Some(2), &[1]);
+        body[3] = statement(Some(3), &[]);
+        body[GAP] = statement(None, &[1]);
+        body[GAP + 1] = statement(None, &[0]);
+        body[GAP + 5] = statement(None, &[2]);
+        body[GAP + 6] = statement(None, &[2, 0]);
+        let mut last_use = vec![0, GAP, GAP + 6, usize::MAX];
+        last_use[0] = GAP + 6;
+        let width = |id: ExprId| if id.0 == 2 { Width::Two } else { Width::One };
+        let (buffer, parked) = park(body, &mut last_use, width, Scalar::F64);
+        let text: Vec<String> = parked.iter().map(|s| s.tokens.to_string()).collect();
+        let find = |needle: &str| -> Vec<usize> {
+            (0..text.len()).filter(|&k| text[k].contains(needle)).collect()
+        };
+        // Writes just after the definitions: t0 at slot 0, t2 at slot 2 (a pair, aligned).
+        assert_eq!(find("park_w"), vec![1, 4]);
+        assert!(text[1].contains("park_w . add (0) . write (t0)"), "{}", text[1]);
+        assert!(text[4].contains("park_w . add (2) . cast :: < [f64 ; 2] >"), "{}", text[4]);
+        // Read back once each, just before the first read after the gap: t0 before the
+        // statement that was GAP + 1, t2 before GAP + 5 (its read at GAP + 6 follows).
+        let loads = find("park_r");
+        assert_eq!(loads.len(), 2, "{text:?}");
+        assert!(text[loads[0]].starts_with("let t0 ="));
+        assert_eq!(parked[loads[0] + 1].reads, vec![ExprId(0)]);
+        assert!(text[loads[1]].starts_with("let t2 ="));
+        assert_eq!(parked[loads[1] + 1].reads, vec![ExprId(2)]);
+        assert_eq!(parked[loads[1]].defined, vec![(format_ident!("t2"), ExprId(2))]);
+        // Nothing else added; the last uses renumbered; the buffer holds the four slots.
+        assert_eq!(parked.len(), n + 4);
+        assert_eq!(last_use, vec![loads[1] + 2, loads[0] - 1, loads[1] + 2, usize::MAX]);
+        let buffer = buffer.to_string();
+        assert!(buffer.contains("struct Parked ([f64 ; 4])"), "{buffer}");
+        assert!(buffer.contains("black_box"));
+    }
+
+    #[test]
+    fn a_body_without_long_gaps_is_left_as_it_is() {
+        let body: Vec<_> = (0..MIN_STATEMENTS as u32)
+            .map(|k| statement(Some(k), &k.checked_sub(1).into_iter().collect::<Vec<_>>()))
+            .collect();
+        let mut last_use: Vec<usize> = (0..MIN_STATEMENTS).map(|k| k + 1).collect();
+        let before = last_use.clone();
+        let (buffer, parked) = park(body, &mut last_use, |_| Width::One, Scalar::F64);
+        assert!(buffer.is_empty());
+        assert_eq!(parked.len(), MIN_STATEMENTS);
+        assert_eq!(last_use, before);
+    }
+}
