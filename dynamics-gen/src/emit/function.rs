@@ -504,11 +504,9 @@ fn chunked(
 /// The names that `part` (statements `..end` of the body) defines and later statements or
 /// the outputs read.
 fn exported(part: &[Statement], end: usize, last_use: &[usize]) -> Vec<Ident> {
-    // A parked value read back in `part` is defined twice (`super::park`): named once.
-    let mut named = std::collections::HashSet::new();
     part.iter()
         .flat_map(|s| s.defined.iter())
-        .filter(|(_, id)| last_use[id.index()] >= end && named.insert(*id))
+        .filter(|(_, id)| last_use[id.index()] >= end)
         .map(|(name, _)| name.clone())
         .collect()
 }

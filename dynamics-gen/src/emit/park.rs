@@ -62,10 +62,11 @@ impl Width {
 }
 
 /// `body` with its long-lived values parked (see the module), and the statements that make
-/// the buffer (empty when nothing is parked); `last_use` renumbered to the new body.
+/// the buffer (empty when nothing is parked); `last_use` renumbered to the new body, with an
+/// entry for each new binding.
 pub(super) fn park(
     body: Vec<Statement>,
-    last_use: &mut [usize],
+    last_use: &mut Vec<usize>,
     width: impl Fn(ExprId) -> Width,
     scalar: Scalar,
 ) -> (TokenStream, Vec<Statement>) {
@@ -129,14 +130,25 @@ pub(super) fn park(
     if len == 0 {
         return (TokenStream::new(), body);
     }
+    // Each value read back is a new binding of its name, with an id of its own (after the
+    // graph's) so that the blocks of `super::function::chunked` export each binding only as
+    // far as it is read; the statements after it read that id.
+    let nodes = last_use.len();
+    let mut current: Vec<ExprId> = (0..nodes as u32).map(ExprId).collect();
     let mut parked = Vec::with_capacity(body.len());
-    for (at, s) in body.into_iter().enumerate() {
+    for (at, mut s) in body.into_iter().enumerate() {
         for (name, id, tokens) in std::mem::take(&mut loads[at]) {
+            let binding = ExprId(last_use.len() as u32);
+            last_use.push(0);
+            current[id.index()] = binding;
             parked.push(Statement {
-                defined: vec![(name, id)],
+                defined: vec![(name, binding)],
                 tokens,
                 reads: Vec::new(),
             });
+        }
+        for id in &mut s.reads {
+            *id = current[id.index()];
         }
         parked.push(s);
         for (id, tokens) in std::mem::take(&mut writes[at]) {
@@ -145,6 +157,13 @@ pub(super) fn park(
                 tokens,
                 reads: vec![id],
             });
+        }
+    }
+    // The outputs (`usize::MAX`) read the last binding of each name.
+    for id in 0..nodes {
+        if last_use[id] == usize::MAX && current[id].index() != id {
+            last_use[current[id].index()] = usize::MAX;
+            last_use[id] = 0;
         }
     }
     for (at, s) in parked.iter().enumerate() {
@@ -212,24 +231,45 @@ mod tests {
         let (buffer, parked) = park(body, &mut last_use, width, Scalar::F64);
         let text: Vec<String> = parked.iter().map(|s| s.tokens.to_string()).collect();
         let find = |needle: &str| -> Vec<usize> {
-            (0..text.len()).filter(|&k| text[k].contains(needle)).collect()
+            (0..text.len())
+                .filter(|&k| text[k].contains(needle))
+                .collect()
         };
         // Writes just after the definitions: t0 at slot 0, t2 at slot 2 (a pair, aligned).
         assert_eq!(find("park_w"), vec![1, 4]);
-        assert!(text[1].contains("park_w . add (0) . write (t0)"), "{}", text[1]);
-        assert!(text[4].contains("park_w . add (2) . cast :: < [f64 ; 2] >"), "{}", text[4]);
+        assert!(
+            text[1].contains("park_w . add (0) . write (t0)"),
+            "{}",
+            text[1]
+        );
+        assert!(
+            text[4].contains("park_w . add (2) . cast :: < [f64 ; 2] >"),
+            "{}",
+            text[4]
+        );
         // Read back once each, just before the first read after the gap: t0 before the
         // statement that was GAP + 1, t2 before GAP + 5 (its read at GAP + 6 follows).
+        // Each read back is a binding of its own (ids 4 and 5), which the later reads read.
         let loads = find("park_r");
         assert_eq!(loads.len(), 2, "{text:?}");
         assert!(text[loads[0]].starts_with("let t0 ="));
-        assert_eq!(parked[loads[0] + 1].reads, vec![ExprId(0)]);
+        assert_eq!(
+            parked[loads[0]].defined,
+            vec![(format_ident!("t0"), ExprId(4))]
+        );
+        assert_eq!(parked[loads[0] + 1].reads, vec![ExprId(4)]);
         assert!(text[loads[1]].starts_with("let t2 ="));
-        assert_eq!(parked[loads[1] + 1].reads, vec![ExprId(2)]);
-        assert_eq!(parked[loads[1]].defined, vec![(format_ident!("t2"), ExprId(2))]);
-        // Nothing else added; the last uses renumbered; the buffer holds the four slots.
+        assert_eq!(
+            parked[loads[1]].defined,
+            vec![(format_ident!("t2"), ExprId(5))]
+        );
+        assert_eq!(parked[loads[1] + 1].reads, vec![ExprId(5)]);
+        assert_eq!(parked[loads[1] + 2].reads, vec![ExprId(5), ExprId(4)]);
+        // Nothing else added; the last uses renumbered (t0's first binding is last read by
+        // t1's statement, t2's by its write); the buffer holds the four slots.
         assert_eq!(parked.len(), n + 4);
-        assert_eq!(last_use, vec![loads[1] + 2, loads[0] - 1, loads[1] + 2, usize::MAX]);
+        let end = loads[1] + 2;
+        assert_eq!(last_use, vec![2, loads[0] - 1, 4, usize::MAX, end, end]);
         let buffer = buffer.to_string();
         assert!(buffer.contains("struct Parked ([f64 ; 4])"), "{buffer}");
         assert!(buffer.contains("black_box"));
