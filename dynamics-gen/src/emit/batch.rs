@@ -145,7 +145,7 @@ pub fn batch_functions(
                 lanes,
                 ready: &[],
                 pack: ALIKE_PACKS,
-                park: lanes.is_none() && options.cpu_dispatch && !options.no_std,
+                park: false,
                 plan: None,
                 reads_jacobian: &[],
             }

@@ -799,7 +799,7 @@ fn body_tokens_with(
         lanes: None,
         ready: &[],
         pack,
-        park: options.cpu_dispatch && !options.no_std,
+        park: options.cpu_dispatch && !options.no_std && park::PARKED.contains(&name),
         plan: None,
         reads_jacobian,
     }

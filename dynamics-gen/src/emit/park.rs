@@ -15,13 +15,22 @@
 //! them with 32-bit displacements, and ran at the rate this core fetches straight-line code
 //! from beyond its 32 KB instruction cache (`docs/performance.md`, fifty-ninth session). The
 //! buffer is addressed from a register (no SIB byte), and the values' reads land next to
-//! their uses, freeing registers across the gap. Measured (the AVX-512 copy, a scratch
-//! binary with old and new code twice each, medians of 11 interleaved rounds, 2026-12-07,
-//! Zen 4): G1's forward dynamics 55,472 → 51,104 bytes, 7,944 → 7,546 instructions, 973–976 →
-//! 888–896 ns (−8.5 %), the same bits; the gap tried from 50 to 1,000 statements (150–300
-//! best; 50: −2 %, 1,000: −3 %). A `black_box` barrier before each read instead of the two
-//! addresses: 53,328 bytes but +3 % time (the barriers order every memory access); volatile
-//! reads: 58,576 bytes, +11 %.
+//! their uses, freeing registers across the gap. Measured (the AVX-512 copies, scratch
+//! binaries with old and new code twice each, medians of 9–11 interleaved rounds,
+//! 2026-12-07, Zen 4; `docs/performance.md`, sixtieth session): G1's forward dynamics 55,472
+//! → 51,232 bytes, 7,944 → 7,550 instructions, 966–971 → 886 ns (−8.6 %), the same bits; the
+//! gap tried from 50 to 1,000 statements (150–300 best). A `black_box` barrier before each
+//! read instead of the two addresses: +3 % (the barriers order every memory access); volatile
+//! reads: +11 %.
+//!
+//! Where: only in the bodies of [`PARKED`] of [`MIN_STATEMENTS`] statements or more, where it
+//! was measured to gain. Elsewhere it lost: a parked value's write and read add a store's
+//! forwarding to its path (and this core forwards a spill slot's store to its reload through
+//! `rsp` at no cost), which bodies bound by latency rather than by fetching their code pay:
+//! TALOS' task-space bias +95 %, Solo-12's forward dynamics (602 statements) +41 %, G1's
+//! inverse dynamics (927 statements, 27 KB of code) +13 %, the factor-based `M⁻¹`, `Λ` and
+//! the forward dynamics with a tip wrench +4 to +6 %. Parking only the values whose reader is
+//! ready long after them (a latency model's slack of 40 cycles) lost G1's gain (+3 %).
 //!
 //! Only in bodies that are dispatched to CPU copies (`std`, CPU dispatch on), which carry
 //! `#[allow(unsafe_code)]` already: the writes and reads are `unsafe` (a raw pointer into an
@@ -38,9 +47,22 @@ use quote::quote;
 /// parked (see the module's measurements).
 pub(super) const GAP: usize = 150;
 
-/// Bodies of fewer statements are left as they are: no value in them waits [`GAP`]
-/// statements for long (the arms' functions but their forward dynamics).
-pub(super) const MIN_STATEMENTS: usize = 256;
+/// Bodies of fewer statements are left as they are (every arm's; Solo-12's forward dynamics,
+/// 602 statements, ran 41 % slower parked).
+pub(super) const MIN_STATEMENTS: usize = 1000;
+
+/// The functions whose bodies are parked: the forward dynamics (the articulated-body
+/// algorithm) and the mass matrices (the composite-rigid-body algorithm) of large trees,
+/// fetch-bound. Measured, old → new, G1 (floating base) and TALOS' upper body: the forward
+/// dynamics −8.6 % and −9 %, `mass_matrix` −10 % and −4 %, `mass_matrix_lower_into` −7 % (G1),
+/// `mass_matrix_dot` −7 % and −24 %, `mass_matrix_and_bias` −7 % and −16 %.
+pub const PARKED: &[&str] = &[
+    "forward_dynamics",
+    "mass_matrix",
+    "mass_matrix_lower_into",
+    "mass_matrix_dot",
+    "mass_matrix_and_bias",
+];
 
 /// What a named value is: a scalar, or a pack of two lanes (`f64`, the `v2_…` packs of
 /// [`super::function`]: `[a, b, 0, 0]`, two stored) or of four.
