@@ -121,8 +121,10 @@ pub struct FunctionBody<'a> {
     /// ([`super::pack`], [`Packs`]). With `std` (`f64` or `f32`), in a single-state body
     /// that is not split into parts.
     pub pack: Packs,
-    /// Long-lived values parked in memory of the body's own ([`super::park`]): in bodies the
-    /// CPU dispatch copies (`std`), which allow `unsafe` code.
+    /// Long-lived values parked in memory of the body's own ([`super::park`]): the functions
+    /// of [`super::park::PARKED`], in code the CPU dispatch copies (`std`), which allows
+    /// `unsafe` code; only where the body has [`super::park::MIN_STATEMENTS`] statements or
+    /// more and is not split into parts.
     pub park: bool,
     /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
     /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].

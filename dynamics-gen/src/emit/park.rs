@@ -57,7 +57,7 @@ pub(super) const MIN_STATEMENTS: usize = 1000;
 /// dynamics −8.6 % and −9 %, `mass_matrix_dot` −7 % and −24 %, `mass_matrix_and_bias` −7 %
 /// and −16 %; G1's `mass_matrix` −10 % and `mass_matrix_lower_into` −7 % (TALOS' mass
 /// matrix, 643 statements, is not parked).
-pub const PARKED: &[&str] = &[
+pub(super) const PARKED: &[&str] = &[
     "forward_dynamics",
     "mass_matrix",
     "mass_matrix_lower_into",
