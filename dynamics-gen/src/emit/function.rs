@@ -256,6 +256,13 @@ fn reorder(
         .iter()
         .map(|&k| slots[k].take().expect("a permutation"))
         .collect();
+    renumber_last_uses(&body, last_use);
+    body
+}
+
+/// `last_use` set to the index in `body` of the last statement reading each node, but for
+/// the outputs' (`usize::MAX`), which stay.
+pub(super) fn renumber_last_uses(body: &[Statement], last_use: &mut [usize]) {
     for (at, s) in body.iter().enumerate() {
         for &id in &s.reads {
             let l = &mut last_use[id.index()];
@@ -264,7 +271,6 @@ fn reorder(
             }
         }
     }
-    body
 }
 
 /// `order` with each of the `stores` (statements that define nothing, which nothing reads)

@@ -189,14 +189,7 @@ pub(super) fn park(
             last_use[id] = 0;
         }
     }
-    for (at, s) in parked.iter().enumerate() {
-        for &id in &s.reads {
-            let l = &mut last_use[id.index()];
-            if *l != usize::MAX {
-                *l = at;
-            }
-        }
-    }
+    super::function::renumber_last_uses(&parked, last_use);
     let len = Literal::usize_unsuffixed(len);
     let prelude = quote! {
         #[repr(C, align(16))]
