@@ -146,6 +146,7 @@ pub fn batch_functions(
                 ready: &[],
                 pack: ALIKE_PACKS,
                 park: false,
+                written: None,
                 plan: None,
                 reads_jacobian: &[],
             }

@@ -313,6 +313,9 @@ struct Used {
     /// The dispatched single-state functions' names and whether their bodies have `FAR`
     /// ([`with_bodies_called`]).
     bodies: BTreeMap<String, bool>,
+    /// The dispatched functions whose copies return their result in the struct's `Written`
+    /// union ([`written_result`]): a caller of a copy or body reads its `value`.
+    written: std::collections::BTreeSet<String>,
 }
 
 /// The impl block (`attrs impl Name { items }`) with every eligible function dispatched, and
@@ -625,7 +628,7 @@ fn dispatch_items(stream: TokenStream, used: &mut Used, scalar: Scalar) -> Token
         }
         if let Some(sig) = sig.as_mut().filter(|_| is_caller[k]) {
             let body = std::mem::take(&mut sig.body);
-            sig.body = with_bodies_called(body, &used.bodies);
+            sig.body = with_bodies_called(body, &used.bodies, &used.written);
         }
         let out = &mut outs[k];
         // A batch function follows its single-state function; another generic function
@@ -821,7 +824,7 @@ fn aligns_frame(body: &TokenStream, is_batch: bool) -> bool {
 /// The three functions for the eligible `item`.
 fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scalar) -> TokenStream {
     if has_mark(item, super::zmm::ONLY_MARK) {
-        let far = batch_far_call(&sig.name, &sig.arg_names, &sig.ret);
+        let far = batch_far_call(&sig.name, &sig.arg_names, &sig.ret, &used.written);
         let before = used.far;
         let fused = wide_body(sig.body.clone(), used, far.as_ref());
         let fused = with_far_args(fused, &sig.arg_names, used.far > before);
@@ -840,6 +843,15 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         ret,
         body,
     } = sig;
+    // A result written into the struct's union: the copies and the body return the union,
+    // the wrapper reads its `value`.
+    let (body, copy_ret, value) = match written_result(&body) {
+        Some((union, body)) => {
+            used.written.insert(name.to_string());
+            (body, quote!(-> #union), quote!(.value))
+        }
+        None => (body, ret.clone(), quote!()),
+    };
     let (attrs, out_of_line) = without_inline_never(&item[..p]);
     let fast = format_ident!("{}_avx512", name);
     let mid = format_ident!("{}_avx2", name);
@@ -857,7 +869,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // An output argument (`m: &mut …`, `mass_matrix_lower_into`) is not kept aside: the body
     // writes through it before the angles are known, so `X_far` gets it as it is.
     let kept = by_value_names(&args);
-    let batch_far = batch_far_call(&name, &arg_names, &ret);
+    let batch_far = batch_far_call(&name, &arg_names, &ret, &used.written);
     let is_batch = batch_far.is_some();
     let far_call = batch_far.unwrap_or_else(|| {
         quote!({
@@ -938,6 +950,11 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     // The default x86-64 target's (no AVX2 there).
     let sse2_body = call_body(quote!(false), false);
     let fallback = quote!(self.#portable #turbofish (#(#arg_names),*));
+    let wrapper_fallback = if value.is_empty() {
+        fallback.clone()
+    } else {
+        quote!(unsafe { #fallback #value })
+    };
     let far_item = has_far.then(|| {
         let doc = format!(
             " [`Self::{name}`] where an angle lies beyond the sines' bound (10⁶ rad for `f64`, \
@@ -961,14 +978,14 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             #[target_feature(enable = "avx2,fma")]
             #[cold]
             #[allow(unsafe_code, improper_ctypes_definitions)]
-            unsafe extern "C" fn #far #fast_generics (#args) #ret {
+            unsafe extern "C" fn #far #fast_generics (#args) #copy_ret {
                 #far_body
             }
             #[doc = #other]
             #[cfg(not(#wide))]
             #[inline(always)]
             #[allow(unsafe_code, improper_ctypes_definitions)]
-            unsafe extern "C" fn #far #fast_generics (#args) #ret {
+            unsafe extern "C" fn #far #fast_generics (#args) #copy_ret {
                 #fallback
             }
         }
@@ -986,7 +1003,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         quote! {
             #[inline(never)]
             #[allow(improper_ctypes_definitions)]
-            extern "C" fn #portable #fast_generics (#args) #ret {
+            extern "C" fn #portable #fast_generics (#args) #copy_ret {
                 #body
             }
         }
@@ -1007,7 +1024,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             #[doc = #wide_doc]
             #[cfg(not(#cond))]
             #[inline(always)]
-            fn #portable #fast_generics (#args) #ret {
+            fn #portable #fast_generics (#args) #copy_ret {
                 #portable_body
             }
         }
@@ -1081,18 +1098,18 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
             #cfg
             {
                 if Self::#has_fast() {
-                    return unsafe { self.#fast #turbofish (#(#arg_names),*) };
+                    return unsafe { self.#fast #turbofish (#(#arg_names),*) #value };
                 }
                 #[cfg(#avx2)]
                 {
                     if Self::has_avx2() {
-                        return unsafe { self.#mid #turbofish (#(#arg_names),*) };
+                        return unsafe { self.#mid #turbofish (#(#arg_names),*) #value };
                     }
                 }
                 #native_mid
             }
             #native_fast
-            #fallback
+            #wrapper_fallback
         }
 
         #portable
@@ -1103,7 +1120,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #fast_cfg
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
-        unsafe extern "C" fn #fast #fast_generics (#args) #ret {
+        unsafe extern "C" fn #fast #fast_generics (#args) #copy_ret {
             #align
             #fast_call
         }
@@ -1114,7 +1131,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #mid_cfg
         #[target_feature(enable = "avx2,fma")]
         #[allow(unsafe_code, improper_ctypes_definitions)]
-        unsafe extern "C" fn #mid #fast_generics (#args) #ret {
+        unsafe extern "C" fn #mid #fast_generics (#args) #copy_ret {
             #align
             #mid_call
         }
@@ -1124,7 +1141,7 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #[doc = #body_doc]
         #[inline(always)]
         #[allow(unsafe_code)]
-        fn #body_fn<const WIDE: bool #far_generic #generics>(#args) #ret {
+        fn #body_fn<const WIDE: bool #far_generic #generics>(#args) #copy_ret {
             #fused
         }
     }
@@ -1145,14 +1162,25 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
 ///   while l < B { out.as_mut_ptr().cast::<R>().add(l).write(f_avx2(&q[l], &qd[l], &qdd[l])); l += 1; }
 ///   out.assume_init() }
 /// ```
-fn batch_far_call(name: &Ident, arg_names: &[Ident], ret: &TokenStream) -> Option<TokenStream> {
+fn batch_far_call(
+    name: &Ident,
+    arg_names: &[Ident],
+    ret: &TokenStream,
+    written: &std::collections::BTreeSet<String>,
+) -> Option<TokenStream> {
     let single = name.to_string();
     let single = single.strip_suffix("_batch")?;
     let elem = array_elem(ret)?;
+    // The single-state copies' result in the struct's union ([`written_result`]): its value.
+    let value = written.contains(single).then(|| quote!(.value));
     let (avx2, portable) = (
         format_ident!("{}_avx2", single),
         format_ident!("{}_portable", single),
     );
+    let portable_call = match &value {
+        Some(value) => quote!(unsafe { self.#portable(#(&#arg_names[l]),*) #value }),
+        None => quote!(self.#portable(#(&#arg_names[l]),*)),
+    };
     let cond = avx2_copy_cond();
     Some(quote!({
         let (#(#arg_names,)*) = far_args;
@@ -1160,9 +1188,9 @@ fn batch_far_call(name: &Ident, arg_names: &[Ident], ret: &TokenStream) -> Optio
         let mut l = 0;
         while l < B {
             #[cfg(#cond)]
-            let v = unsafe { self.#avx2(#(&#arg_names[l]),*) };
+            let v = unsafe { self.#avx2(#(&#arg_names[l]),*) #value };
             #[cfg(not(#cond))]
-            let v = self.#portable(#(&#arg_names[l]),*);
+            let v = #portable_call;
             // SAFETY: `l < B`, within `out`.
             unsafe { out.as_mut_ptr().cast::<#elem>().add(l).write(v) };
             l += 1;
@@ -1210,31 +1238,49 @@ fn method_call(tokens: &[TokenTree]) -> Option<(&Ident, &Group)> {
 /// path in an `extern "C"` copy, which the `no_panic` test rejects), and then its copy out of
 /// line; its body is fused into theirs instead, with its far angles left to `f_far` as in its
 /// own copies. `constrained_forward_dynamics` calls `mass_matrix_factor` so.
-fn with_bodies_called(body: TokenStream, bodies: &BTreeMap<String, bool>) -> TokenStream {
+fn with_bodies_called(
+    body: TokenStream,
+    bodies: &BTreeMap<String, bool>,
+    written: &std::collections::BTreeSet<String>,
+) -> TokenStream {
     let tokens: Vec<TokenTree> = body.into_iter().collect();
     let mut out = TokenStream::new();
     let mut k = 0;
     while k < tokens.len() {
         if let Some((f, args)) = method_call(&tokens[k..]) {
             if let Some(&far) = bodies.get(&f.to_string()) {
-                let args = with_bodies_called(args.stream(), bodies);
+                let args = with_bodies_called(args.stream(), bodies, written);
                 let body_fn = format_ident!("{}_body", f);
                 let portable = format_ident!("{}_portable", f);
                 let not_far = far.then(|| quote!(, false));
-                out.extend(quote!({
-                    if WIDE {
-                        self.#body_fn::<true #not_far>(#args)
-                    } else {
-                        self.#portable(#args)
-                    }
-                }));
+                out.extend(if written.contains(&f.to_string()) {
+                    // Its result in the struct's union ([`written_result`]): its value.
+                    quote!({
+                        if WIDE {
+                            unsafe { self.#body_fn::<true #not_far>(#args).value }
+                        } else {
+                            unsafe { self.#portable(#args).value }
+                        }
+                    })
+                } else {
+                    quote!({
+                        if WIDE {
+                            self.#body_fn::<true #not_far>(#args)
+                        } else {
+                            self.#portable(#args)
+                        }
+                    })
+                });
                 k += 4;
                 continue;
             }
         }
         match &tokens[k] {
             TokenTree::Group(g) => {
-                let mut new = Group::new(g.delimiter(), with_bodies_called(g.stream(), bodies));
+                let mut new = Group::new(
+                    g.delimiter(),
+                    with_bodies_called(g.stream(), bodies, written),
+                );
                 new.set_span(g.span());
                 out.extend([TokenTree::Group(new)]);
             }
@@ -1243,6 +1289,50 @@ fn with_bodies_called(body: TokenStream, bodies: &BTreeMap<String, bool>) -> Tok
         k += 1;
     }
     out
+}
+
+/// A body that writes its result into the struct's union (`Written`,
+/// [`super::function::written_union_item`]): it declares `let mut m: W<R> = W { uninit: () };`
+/// at its top level and ends `unsafe { m.value }`. Then the union's type `W<R>` and the body
+/// ending `m` instead, so that the copies return the union through the caller's memory and
+/// the wrapper reads its `value`; `None` for any other body.
+fn written_result(body: &TokenStream) -> Option<(TokenStream, TokenStream)> {
+    let tokens: Vec<TokenTree> = body.clone().into_iter().collect();
+    let is = |t: &TokenTree, s: &str| match t {
+        TokenTree::Ident(i) => i == s,
+        TokenTree::Punct(p) => s.len() == 1 && s.starts_with(p.as_char()),
+        TokenTree::Group(_) | TokenTree::Literal(_) => false,
+    };
+    let [.., TokenTree::Ident(unsafe_kw), TokenTree::Group(tail)] = &tokens[..] else {
+        return None;
+    };
+    let tail: Vec<TokenTree> = tail.stream().into_iter().collect();
+    if unsafe_kw != "unsafe"
+        || tail.len() != 3
+        || !(is(&tail[0], "m") && is(&tail[1], ".") && is(&tail[2], "value"))
+    {
+        return None;
+    }
+    // `let mut m : W < R > = W { uninit : () } ;` at the top level.
+    let union = tokens.windows(4).enumerate().find_map(|(k, w)| {
+        (is(&w[0], "let") && is(&w[1], "mut") && is(&w[2], "m") && is(&w[3], ":")).then(|| {
+            let eq = tokens[k + 4..]
+                .iter()
+                .position(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == '='))?;
+            let init = &tokens[k + 4 + eq + 1..];
+            match init {
+                [TokenTree::Ident(_), TokenTree::Group(g), ..]
+                    if contains_ident(&g.stream(), "uninit") =>
+                {
+                    Some(tokens[k + 4..k + 4 + eq].iter().cloned().collect::<TokenStream>())
+                }
+                _ => None,
+            }
+        })?
+    })?;
+    let mut body: TokenStream = tokens[..tokens.len() - 2].iter().cloned().collect();
+    body.extend(quote!(m));
+    Some((union, body))
 }
 
 /// `body` with the arguments as passed kept aside at its top (`far_args`) when `far` (its
@@ -2706,7 +2796,7 @@ mod tests {
         let bodies: BTreeMap<String, bool> =
             [("g".to_string(), true), ("h".to_string(), false)].into();
         let body = quote!(let x = self.g(a, self.h(b)); let y = (self.k(x), self.h(c)); y);
-        let out = with_bodies_called(body.clone(), &bodies).to_string();
+        let out = with_bodies_called(body.clone(), &bodies, &Default::default()).to_string();
         assert!(
             out.contains("self . g_body :: < true , false > (a , {"),
             "{out}"

@@ -126,6 +126,11 @@ pub struct FunctionBody<'a> {
     /// `unsafe` code; only where the body has [`super::park::MIN_STATEMENTS`] statements or
     /// more and is not split into parts.
     pub park: bool,
+    /// The union a stored result is written into without zeroing ([`WRITTEN_DOC`]): the
+    /// struct's name with `Written` (`G1Written`), in code the CPU dispatch copies (`std`),
+    /// which allows `unsafe` code and returns the union from its copies
+    /// ([`super::dispatch`]); `None`: a zeroed result, as everywhere else.
+    pub written: Option<&'a Ident>,
     /// In a batch body (`lanes`), the fused multiply-adds of the single-state body's packs,
     /// which the batch makes alike ([`Plan`]). Filled by [`Self::tokens`].
     pub plan: Option<&'a Plan>,
@@ -227,6 +232,47 @@ const STORED_MIN_LIVE: usize = 64;
 /// whatever their size; wall-clock times stayed within the ±15 % of build-to-build noise.
 const PART_LETS: usize = 512;
 
+/// The union [`FunctionBody::written`] names for the struct `name`: `{name}Written`.
+pub(super) fn written_union(name: &Ident) -> Ident {
+    format_ident!("{}Written", name)
+}
+
+/// The item of [`written_union`] `w`, which the generated file holds beside the struct when
+/// a function writes into it:
+///
+/// ```text
+/// union G1Written<T: Copy> { value: T, uninit: () }
+/// ```
+///
+/// A stored result ([`Output::StoredMatrix`], the first matrix of an [`Output::Tuple`]) is
+/// otherwise a zeroed matrix that its stores overwrite. Returned by value, it is the caller's
+/// memory (the copies return it through the caller's pointer), and the zeroing is a `memset`
+/// of all of it before the body starts: 9,800 bytes for a humanoid's mass matrix (G1, 35
+/// coordinates), 88 ns alone on this machine (AMD Zen 4), of 514–536 ns. In the union, the
+/// result starts uninitialised: the stores write its entries through `m.value` (a place, as
+/// `m.data.0[c][r]` was, so that the optimiser still writes into the caller's memory: through
+/// a raw pointer of a `MaybeUninit`, the result was kept in registers and copied at the end,
+/// 695 ns), the structural zeros are written among them ([`with_zero_writes`]), and the
+/// wrapper reads `value` from what its copy returns. Sound: a straight-line body writes every
+/// entry (each stored one once, each other one by a zero write) before the read, and other
+/// parts of a tuple are assigned whole. Only in code the CPU dispatch copies ([`super::dispatch`]
+/// returns the union from the copies), whose bodies allow `unsafe` code; `no_std` and
+/// `--no-cpu-dispatch` code zeroes as before. Measured (G1, floating base, the AVX-512 copy,
+/// old and new code in one binary, medians of 11 interleaved rounds, 2026-12-07): see
+/// `docs/performance.md`.
+pub(super) fn written_union_item(w: &Ident) -> TokenStream {
+    let doc = " A result the dispatched copies write entry by entry, every entry once, before \
+               it is read: returned through the caller's memory without zeroing it first.";
+    quote! {
+        #[doc = #doc]
+        #[allow(dead_code)]
+        union #w<T: Copy> {
+            value: T,
+            uninit: (),
+        }
+    }
+}
+
 /// A `let` statement of a body, the nodes it names and the named nodes it reads.
 pub(super) struct Statement {
     pub(super) defined: Vec<(Ident, ExprId)>,
@@ -258,6 +304,37 @@ fn reorder(
         .collect();
     renumber_last_uses(&body, last_use);
     body
+}
+
+/// `body` with the `zeros` ([`FunctionBody::zero_writes`]) spread evenly among its stores
+/// (the statements that define nothing), in order: zero `j` of `z` follows store `i` of `n`
+/// (counted from 1) for the smallest `i` with `j · n < i · z`.
+///
+/// Why spread: a store waits in the core's store queue until the cache takes it, and the
+/// cache takes about 32 bytes a cycle here (AMD Zen 4; 9,800 bytes zeroed by `memset` took
+/// 88 ns, the zero entries of G1's mass matrix alone 72 ns, in a loop of their own): written
+/// together, at the top or at the end, the zeros stall the body behind them (G1's mass
+/// matrix by value 507–523 ns, against 468–473 spread and 514–536 zeroed by `memset`).
+fn with_zero_writes(body: Vec<Statement>, zeros: Vec<Statement>) -> Vec<Statement> {
+    let (n, z) = (
+        body.iter().filter(|s| s.defined.is_empty()).count(),
+        zeros.len(),
+    );
+    let mut zeros = zeros.into_iter().enumerate().peekable();
+    let mut out = Vec::with_capacity(body.len() + z);
+    let mut seen = 0;
+    for s in body {
+        let store = s.defined.is_empty();
+        out.push(s);
+        if store {
+            seen += 1;
+            while let Some((_, zero)) = zeros.next_if(|&(j, _)| j * n < seen * z) {
+                out.push(zero);
+            }
+        }
+    }
+    out.extend(zeros.map(|(_, zero)| zero));
+    out
 }
 
 /// `last_use` set to the index in `body` of the last statement reading each node, but for
@@ -965,8 +1042,16 @@ impl FunctionBody<'_> {
         let value = match self.output {
             Output::StoredMatrix if !stores.is_empty() => {
                 let ty = self.matrix_type();
-                stmts.extend(quote!(let mut m = #ty::zeros();));
-                quote!(m)
+                match self.written {
+                    Some(w) => {
+                        stmts.extend(quote!(let mut m: #w<#ty> = #w { uninit: () };));
+                        quote!(unsafe { m.value })
+                    }
+                    None => {
+                        stmts.extend(quote!(let mut m = #ty::zeros();));
+                        quote!(m)
+                    }
+                }
             }
             Output::Matrix | Output::StoredMatrix => self.matrix(&bind, self.outputs),
             Output::StoredLower if stores.is_empty() => self.lower_writes(&bind),
@@ -1004,9 +1089,19 @@ impl FunctionBody<'_> {
                     quote!((#(#items),*))
                 } else {
                     let types = shapes[..count].iter().map(|&s| part(s).matrix_type());
-                    stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
                     let fields = (1..count).map(proc_macro2::Literal::usize_unsuffixed);
-                    quote!(#(m.#fields = #items;)* m)
+                    match self.written {
+                        Some(w) => {
+                            stmts.extend(
+                                quote!(let mut m: #w<(#(#types),*)> = #w { uninit: () };),
+                            );
+                            quote!(unsafe { #(m.value.#fields = #items;)* } unsafe { m.value })
+                        }
+                        None => {
+                            stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
+                            quote!(#(m.#fields = #items;)* m)
+                        }
+                    }
                 }
             }
             Output::Checked { guards } => {
@@ -1036,6 +1131,10 @@ impl FunctionBody<'_> {
             self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
         let mut body = reorder(body, &stores, &reads, &mut last_use);
+        if self.written.is_some() && !stores.is_empty() {
+            body = with_zero_writes(body, self.zero_writes());
+            renumber_last_uses(&body, &mut last_use);
+        }
         let value = renumber(&mut body, &mut bind, value);
         let split = self
             .self_ty
@@ -1525,6 +1624,11 @@ impl FunctionBody<'_> {
             } else {
                 quote! { { let v = #value; #(#places = v;)* } }
             };
+            // A union's field (`m.value`), written before any read of it.
+            let tokens = match self.written {
+                Some(_) => quote!(unsafe { #tokens }),
+                None => tokens,
+            };
             let mut reads = Vec::new();
             self.note_uses(bind, id, body.len(), last_use, &mut reads);
             roots.push(body.len());
@@ -1541,15 +1645,56 @@ impl FunctionBody<'_> {
     /// its shape: an [`Output::StoredMatrix`] (`m`), or the first of an [`Output::Tuple`] with
     /// `stored_first` (`m.0`).
     fn stored_place(&self) -> Option<(TokenStream, usize, usize)> {
+        let m = match self.written {
+            Some(_) => quote!(m.value),
+            None => quote!(m),
+        };
         match self.output {
-            Output::StoredMatrix | Output::StoredLower => Some((quote!(m), self.rows, self.cols)),
+            Output::StoredMatrix => Some((m, self.rows, self.cols)),
+            Output::StoredLower => Some((quote!(m), self.rows, self.cols)),
             Output::Tuple {
                 shapes,
                 stored_first: true,
                 ..
-            } => Some((quote!(m.0), shapes[0].0, shapes[0].1)),
+            } => Some((quote!(#m.0), shapes[0].0, shapes[0].1)),
             _ => None,
         }
+    }
+
+    /// The writes of `0.0` into the entries of a stored result that [`Self::stores`] leaves
+    /// (those +0.0 for every input, the tree's structural zeros) when it is written into
+    /// [`Self::written`]'s union, which starts uninitialised: one statement per run of them
+    /// in a column, `unsafe { m.value.data.0[c][r] = 0.0; … }`, columns in order. The
+    /// optimiser writes a run's adjacent entries with vector stores.
+    fn zero_writes(&self) -> Vec<Statement> {
+        let Some((place, rows, cols)) = self.stored_place() else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for c in 0..cols {
+            let mut r = 0;
+            while r < rows {
+                let start = r;
+                while r < rows && !self.is_stored(r * cols + c, cols) {
+                    r += 1;
+                }
+                if r > start {
+                    let c = proc_macro2::Literal::usize_unsuffixed(c);
+                    let writes = (start..r).map(|r| {
+                        let r = proc_macro2::Literal::usize_unsuffixed(r);
+                        quote!(#place.data.0[#c][#r] = 0.0;)
+                    });
+                    out.push(Statement {
+                        defined: Vec::new(),
+                        tokens: quote!(unsafe { #(#writes)* }),
+                        reads: Vec::new(),
+                    });
+                } else {
+                    r += 1;
+                }
+            }
+        }
+        out
     }
 
     /// The most named values live at once in `body` scheduled for [`Output::Matrix`] (from
@@ -1654,9 +1799,9 @@ impl FunctionBody<'_> {
     }
 
     /// Whether output `k` (row-major, `cols` columns) of a stored matrix is written: not a
-    /// +0.0 constant (the matrix starts zeroed, or keeps the caller's zeros; a −0.0 entry is
-    /// still written, as the literal has it), and for an [`Output::StoredLower`] on or below
-    /// the diagonal.
+    /// +0.0 constant (the matrix starts zeroed, keeps the caller's zeros, or gets them from
+    /// [`Self::zero_writes`]; a −0.0 entry is still written, as the literal has it), and for
+    /// an [`Output::StoredLower`] on or below the diagonal.
     fn is_stored(&self, k: usize, cols: usize) -> bool {
         let zero = self
             .graph
@@ -2405,7 +2550,7 @@ mod tests {
         for name in ["mass_matrix_inverse", "mass_matrix_dot"] {
             let body = body_of(&code, name);
             assert!(
-                body.contains("letmutm=::nalgebra::SMatrix::<f64,18,18>::zeros();"),
+                body.contains("letmutm:SoloWritten<::nalgebra::SMatrix<f64,18,18>>="),
                 "{name}"
             );
             assert!(
@@ -2413,14 +2558,14 @@ mod tests {
                 "{name}"
             );
         }
-        // The pair: `M` into `m.0` entry by entry, `c + g` assigned after it.
+        // The pair: `M` into `m.value.0` entry by entry, `c + g` assigned after it.
         let body = body_of(&code, "mass_matrix_and_bias");
         assert!(body.contains(
-            "letmutm=(::nalgebra::SMatrix::<f64,18,18>::zeros(),::nalgebra::SVector::<f64,18>::zeros(),);"
+            "letmutm:SoloWritten<(::nalgebra::SMatrix<f64,18,18>,::nalgebra::SVector<f64,18>),>=SoloWritten{uninit:()};"
         ));
         let (last, bias) = (
-            body.find("m.0.data.0[17][17]=").expect("the last entry"),
-            body.find("m.1=::nalgebra::SVector::<f64,18,>::from_array_storage(")
+            body.find("m.value.0.data.0[17][17]=").expect("the last entry"),
+            body.find("m.value.1=::nalgebra::SVector::<f64,18,>::from_array_storage(")
                 .expect("the bias"),
         );
         assert!(last < bias && body.ends_with('m'));
@@ -2434,8 +2579,8 @@ mod tests {
     fn the_bias_with_many_live_values_is_stored_the_inverse_dynamics_not() {
         let code = solo12_floating(&["coriolis", "inverse_dynamics"]);
         let body = body_of(&code, "coriolis");
-        assert!(body.contains("letmutm=::nalgebra::SVector::<f64,18>::zeros();"));
-        assert!(body.contains("m.data.0[0][17]=") && body.ends_with('m'));
+        assert!(body.contains("letmutm:SoloWritten<::nalgebra::SVector<f64,18>>="));
+        assert!(body.contains("m.value.data.0[0][17]=") && body.ends_with('m'));
         let body = body_of(&code, "inverse_dynamics");
         assert!(body.contains("from_array_storage") && !body.contains("letmutm="));
         // The UR5's bias keeps few values live: a literal.
@@ -2459,25 +2604,55 @@ mod tests {
             .generate()
             .expect("generates");
         let body = mass_matrix_body(&code);
-        assert!(body.contains("letmutm=::nalgebra::SMatrix::<f64,18,18>::zeros();"));
-        assert!(!body.contains("from_array_storage"));
-        // Every entry written at most once (zeros not at all), both halves by one statement.
+        // Into the struct's union, uninitialised: its copies return it.
+        assert!(body.contains(
+            "letmutm:SoloWritten<::nalgebra::SMatrix<f64,18,18>>=SoloWritten{uninit:(),};"
+        ));
+        assert!(!body.contains("from_array_storage") && !body.contains("zeros()"));
+        assert!(code.contains("\nunion SoloWritten<T: Copy> {\n"));
+        assert!(code.contains("-> SoloWritten<::nalgebra::SMatrix<f64, 18, 18>> {"));
+        assert!(code.contains("return unsafe { self.mass_matrix_avx512(q).value };"));
+        // Every entry written exactly once (the structural zeros by zero writes), both
+        // halves by one statement.
         for r in 0..18 {
             for c in 0..18 {
-                assert!(body.matches(&format!("m.data.0[{c}][{r}]=")).count() <= 1);
+                assert_eq!(
+                    body.matches(&format!("m.value.data.0[{c}][{r}]=")).count(),
+                    1,
+                    "M{r},{c}"
+                );
             }
         }
+        // Structural zeros: two legs' joints.
+        assert!(body.contains("m.value.data.0[6][9]=0.0;"), "a structural zero");
         let (last, first) = (
-            body.find("m.data.0[17][17]=").expect("the last entry"),
-            body.find("m.data.0[0][0]=").expect("the first"),
+            body.find("m.value.data.0[17][17]=").expect("the last entry"),
+            body.find("m.value.data.0[0][0]=").expect("the first"),
         );
         assert!(last < first, "scheduled from the last entry back");
-        let at = body.find("m.data.0[16][17]=").expect("M₁₇,₁₆") + "m.data.0[16][17]=".len();
+        let store = "m.value.data.0[16][17]=";
+        let at = body.find(store).expect("M₁₇,₁₆") + store.len();
         let value = &body[at..at + body[at..].find(';').expect("a statement")];
         assert!(body.contains(&format!(
-            "m.data.0[16][17]={value};m.data.0[17][16]={value};"
+            "m.value.data.0[16][17]={value};m.value.data.0[17][16]={value};"
         )));
-        assert!(body.ends_with('m'), "returns the matrix");
+        assert!(body.ends_with('m'), "returns the union");
+        // Without the dispatch, zeroed, and no `unsafe` code.
+        for code in [
+            crate::Builder::new(solo)
+                .floating_base(true)
+                .no_std(true)
+                .generate()
+                .expect("generates"),
+            crate::Builder::new(solo)
+                .floating_base(true)
+                .cpu_dispatch(false)
+                .generate()
+                .expect("generates"),
+        ] {
+            assert!(code.contains("let mut m = ::nalgebra::SMatrix::<f64, 18, 18>::zeros();"));
+            assert!(!code.contains("Written") && !code.contains("unsafe"));
+        }
         // The arms' literals keep at most 50 values live: kept.
         for arm in ["ur5", "rand7"] {
             let code = crate::Builder::new(arm).generate().expect("generates");

@@ -620,6 +620,13 @@ pub fn generate_impl(robot: &Robot, options: &Options) -> Result<Generated, Erro
         dispatch::apply(impl_block, options.scalar)
     };
     let impl_block = batch::out_of_line(impl_block);
+    let written = function::written_union(&ident);
+    let impl_block = if dispatch::contains_ident(&impl_block, &written.to_string()) {
+        let item = function::written_union_item(&written);
+        quote!(#impl_block #item)
+    } else {
+        impl_block
+    };
     let impl_block = match &runtime {
         None => impl_block,
         Some(runtime) => {
@@ -785,6 +792,7 @@ fn body_tokens_with(
         .name
         .as_deref()
         .and_then(|n| syn::parse_str::<Ident>(n).ok());
+    let written = self_ty.as_ref().map(function::written_union);
     FunctionBody {
         graph,
         args,
@@ -800,6 +808,7 @@ fn body_tokens_with(
         ready: &[],
         pack,
         park: options.cpu_dispatch && !options.no_std && park::PARKED.contains(&name),
+        written: written.as_ref().filter(|_| options.cpu_dispatch && !options.no_std),
         plan: None,
         reads_jacobian,
     }
