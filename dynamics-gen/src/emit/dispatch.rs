@@ -1324,7 +1324,12 @@ fn written_result(body: &TokenStream) -> Option<(TokenStream, TokenStream)> {
                 [TokenTree::Ident(_), TokenTree::Group(g), ..]
                     if contains_ident(&g.stream(), "uninit") =>
                 {
-                    Some(tokens[k + 4..k + 4 + eq].iter().cloned().collect::<TokenStream>())
+                    Some(
+                        tokens[k + 4..k + 4 + eq]
+                            .iter()
+                            .cloned()
+                            .collect::<TokenStream>(),
+                    )
                 }
                 _ => None,
             }

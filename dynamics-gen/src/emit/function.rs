@@ -1092,9 +1092,7 @@ impl FunctionBody<'_> {
                     let fields = (1..count).map(proc_macro2::Literal::usize_unsuffixed);
                     match self.written {
                         Some(w) => {
-                            stmts.extend(
-                                quote!(let mut m: #w<(#(#types),*)> = #w { uninit: () };),
-                            );
+                            stmts.extend(quote!(let mut m: #w<(#(#types),*)> = #w { uninit: () };));
                             quote!(unsafe { #(m.value.#fields = #items;)* } unsafe { m.value })
                         }
                         None => {
@@ -2564,7 +2562,8 @@ mod tests {
             "letmutm:SoloWritten<(::nalgebra::SMatrix<f64,18,18>,::nalgebra::SVector<f64,18>),>=SoloWritten{uninit:()};"
         ));
         let (last, bias) = (
-            body.find("m.value.0.data.0[17][17]=").expect("the last entry"),
+            body.find("m.value.0.data.0[17][17]=")
+                .expect("the last entry"),
             body.find("m.value.1=::nalgebra::SVector::<f64,18,>::from_array_storage(")
                 .expect("the bias"),
         );
@@ -2624,9 +2623,13 @@ mod tests {
             }
         }
         // Structural zeros: two legs' joints.
-        assert!(body.contains("m.value.data.0[6][9]=0.0;"), "a structural zero");
+        assert!(
+            body.contains("m.value.data.0[6][9]=0.0;"),
+            "a structural zero"
+        );
         let (last, first) = (
-            body.find("m.value.data.0[17][17]=").expect("the last entry"),
+            body.find("m.value.data.0[17][17]=")
+                .expect("the last entry"),
             body.find("m.value.data.0[0][0]=").expect("the first"),
         );
         assert!(last < first, "scheduled from the last entry back");

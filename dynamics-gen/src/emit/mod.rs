@@ -808,7 +808,9 @@ fn body_tokens_with(
         ready: &[],
         pack,
         park: options.cpu_dispatch && !options.no_std && park::PARKED.contains(&name),
-        written: written.as_ref().filter(|_| options.cpu_dispatch && !options.no_std),
+        written: written
+            .as_ref()
+            .filter(|_| options.cpu_dispatch && !options.no_std),
         plan: None,
         reads_jacobian,
     }
