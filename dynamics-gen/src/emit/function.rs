@@ -1042,7 +1042,7 @@ impl FunctionBody<'_> {
         let value = match self.output {
             Output::StoredMatrix if !stores.is_empty() => {
                 let ty = self.matrix_type();
-                match self.written {
+                match self.written_union() {
                     Some(w) => {
                         stmts.extend(quote!(let mut m: #w<#ty> = #w { uninit: () };));
                         quote!(unsafe { m.value })
@@ -1090,7 +1090,7 @@ impl FunctionBody<'_> {
                 } else {
                     let types = shapes[..count].iter().map(|&s| part(s).matrix_type());
                     let fields = (1..count).map(proc_macro2::Literal::usize_unsuffixed);
-                    match self.written {
+                    match self.written_union() {
                         Some(w) => {
                             stmts.extend(quote!(let mut m: #w<(#(#types),*)> = #w { uninit: () };));
                             quote!(unsafe { #(m.value.#fields = #items;)* } unsafe { m.value })
@@ -1129,7 +1129,7 @@ impl FunctionBody<'_> {
             self.note_uses(&bind, o, usize::MAX, &mut last_use, &mut reads);
         }
         let mut body = reorder(body, &stores, &reads, &mut last_use);
-        if self.written.is_some() && !stores.is_empty() {
+        if self.written_union().is_some() && !stores.is_empty() {
             body = with_zero_writes(body, self.zero_writes());
             renumber_last_uses(&body, &mut last_use);
         }
@@ -1623,7 +1623,7 @@ impl FunctionBody<'_> {
                 quote! { { let v = #value; #(#places = v;)* } }
             };
             // A union's field (`m.value`), written before any read of it.
-            let tokens = match self.written {
+            let tokens = match self.written_union() {
                 Some(_) => quote!(unsafe { #tokens }),
                 None => tokens,
             };
@@ -1643,7 +1643,7 @@ impl FunctionBody<'_> {
     /// its shape: an [`Output::StoredMatrix`] (`m`), or the first of an [`Output::Tuple`] with
     /// `stored_first` (`m.0`).
     fn stored_place(&self) -> Option<(TokenStream, usize, usize)> {
-        let m = match self.written {
+        let m = match self.written_union() {
             Some(_) => quote!(m.value),
             None => quote!(m),
         };
@@ -1657,6 +1657,12 @@ impl FunctionBody<'_> {
             } => Some((quote!(#m.0), shapes[0].0, shapes[0].1)),
             _ => None,
         }
+    }
+
+    /// [`Self::written`] where the result is the body's own: not for an
+    /// [`Output::StoredLower`], which writes into the caller's matrix (and nothing else).
+    fn written_union(&self) -> Option<&Ident> {
+        self.written.filter(|_| self.output != Output::StoredLower)
     }
 
     /// The writes of `0.0` into the entries of a stored result that [`Self::stores`] leaves
@@ -2640,6 +2646,11 @@ mod tests {
             "m.value.data.0[16][17]={value};m.value.data.0[17][16]={value};"
         )));
         assert!(body.ends_with('m'), "returns the union");
+        // `mass_matrix_lower_into` writes the lower triangle into the caller's matrix and
+        // nothing else: no union, no zero writes (and Solo-12's is not parked).
+        let lower = body_of(&code, "mass_matrix_lower_into");
+        assert!(lower.contains("m.data.0[17][17]="));
+        assert!(!lower.contains("unsafe{m.") && !lower.contains("=0.0;"));
         // Without the dispatch, zeroed, and no `unsafe` code.
         for code in [
             crate::Builder::new(solo)
