@@ -1093,7 +1093,8 @@ impl FunctionBody<'_> {
                     match self.written_union() {
                         Some(w) => {
                             stmts.extend(quote!(let mut m: #w<(#(#types),*)> = #w { uninit: () };));
-                            quote!(unsafe { #(m.value.#fields = #items;)* } unsafe { m.value })
+                            // A field of the union's field: a safe write (no index).
+                            quote!(#(m.value.#fields = #items;)* unsafe { m.value })
                         }
                         None => {
                             stmts.extend(quote!(let mut m = (#(#types::zeros()),*);));
