@@ -501,7 +501,8 @@ fn main() {
             ", frames"
         };
         let mut copies = if COPIES.contains(&case.module.as_str()) {
-            copies_helper(nq, nv, s)
+            let code = std::fs::read_to_string(out.join(&file)).expect("written above");
+            copies_helper(nq, nv, s, returns_written(&code, "mass_matrix_avx512"))
         } else {
             String::new()
         };
@@ -881,12 +882,28 @@ pub fn batch_instances() {{
     )
 }
 
+/// Whether the copy `copy` in the generated `code` returns its result in the struct's
+/// `Written` union (a stored result of a tree: `dynamics-gen/src/emit/function.rs`,
+/// `written_union_item`), whose `value` its caller reads.
+fn returns_written(code: &str, copy: &str) -> bool {
+    code.find(&format!("fn {copy}("))
+        .and_then(|at| {
+            let signature = &code[at..];
+            signature
+                .find('{')
+                .map(|end| signature[..end].contains("Written<"))
+        })
+        .unwrap_or(false)
+}
+
 /// The source of `dispatched_copies_differ` for a [`COPIES`] module: the inverse dynamics,
 /// mass matrix, forward dynamics (with `a` as τ), gravity and the mass matrix in place
 /// (`mass_matrix_lower_into`) of its AVX-512 and its AVX2 copy
 /// at one state, as (entries compared, entries whose bits differ); `None` unless the CPU has
-/// both instruction sets, or where the binary has no AVX2 copy.
-fn copies_helper(nq: usize, nv: usize, s: &str) -> String {
+/// both instruction sets, or where the binary has no AVX2 copy. `written`: the mass matrix's
+/// copies return the struct's `Written` union ([`returns_written`]).
+fn copies_helper(nq: usize, nv: usize, s: &str, written: bool) -> String {
+    let value = if written { ".value" } else { "" };
     format!(
         r#"
 /// Where this binary has both copies: the AVX-512 and the AVX2 copy at one state.
@@ -903,7 +920,7 @@ pub fn dispatched_copies_differ(q: &[f64], v: &[f64], a: &[f64]) -> Option<(usiz
     // SAFETY: the CPU has the features both copies are compiled for (checked above).
     unsafe {{
         cmp(r.inverse_dynamics_avx512(&q, &v, &a).as_slice(), r.inverse_dynamics_avx2(&q, &v, &a).as_slice());
-        cmp(r.mass_matrix_avx512(&q).as_slice(), r.mass_matrix_avx2(&q).as_slice());
+        cmp(r.mass_matrix_avx512(&q){value}.as_slice(), r.mass_matrix_avx2(&q){value}.as_slice());
         cmp(r.forward_dynamics_avx512(&q, &v, &a).as_slice(), r.forward_dynamics_avx2(&q, &v, &a).as_slice());
         cmp(r.gravity_avx512(&q).as_slice(), r.gravity_avx2(&q).as_slice());
         let (mut wide, mut mid) = (::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros(), ::nalgebra::SMatrix::<{s}, {nv}, {nv}>::zeros());
