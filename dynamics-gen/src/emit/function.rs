@@ -36,7 +36,9 @@ pub enum Output {
     /// One `rows × cols` matrix (a vector for one column), outputs row-major.
     Matrix,
     /// One `rows × cols` matrix, outputs row-major, written entry by entry into a zeroed
-    /// matrix as soon as each entry is computed, its statements scheduled from the last
+    /// matrix (in code the CPU dispatch copies, into the struct's uninitialised union, its
+    /// structural zeros written among the stores: [`FunctionBody::written`]) as soon as each
+    /// entry is computed, its statements scheduled from the last
     /// entry back (see [`FunctionBody::stores`]), where its literal would keep more than
     /// [`STORED_MIN_LIVE`] values live. As [`Output::Matrix`] otherwise, in a batch body and
     /// in a body split into parts. The mass matrix, `Ṁ` and `M⁻¹`.
@@ -64,9 +66,9 @@ pub enum Output {
         shapes: [(usize, usize); 4],
         /// How many of `shapes` are used.
         count: usize,
-        /// The first matrix is written entry by entry into a zeroed tuple, as an
-        /// [`Output::StoredMatrix`] is (under the same bound), and the others assigned after
-        /// it.
+        /// The first matrix is written entry by entry into a zeroed tuple (or the union), as
+        /// an [`Output::StoredMatrix`] is (under the same bound), and the others assigned
+        /// after it.
         stored_first: bool,
     },
     /// `Option` of one `rows × cols` matrix: the first `2·guards` outputs are pairs
@@ -126,7 +128,7 @@ pub struct FunctionBody<'a> {
     /// `unsafe` code; only where the body has [`super::park::MIN_STATEMENTS`] statements or
     /// more and is not split into parts.
     pub park: bool,
-    /// The union a stored result is written into without zeroing ([`WRITTEN_DOC`]): the
+    /// The union a stored result is written into without zeroing ([`written_union_item`]): the
     /// struct's name with `Written` (`G1Written`), in code the CPU dispatch copies (`std`),
     /// which allows `unsafe` code and returns the union from its copies
     /// ([`super::dispatch`]); `None`: a zeroed result, as everywhere else.
@@ -314,7 +316,7 @@ fn reorder(
 /// cache takes about 32 bytes a cycle here (AMD Zen 4; 9,800 bytes zeroed by `memset` took
 /// 88 ns, the zero entries of G1's mass matrix alone 72 ns, in a loop of their own): written
 /// together, at the top or at the end, the zeros stall the body behind them (G1's mass
-/// matrix by value 507–523 ns, against 468–473 spread and 514–536 zeroed by `memset`).
+/// matrix by value 507–523 ns, against 456–470 spread and 470–536 zeroed by `memset`).
 fn with_zero_writes(body: Vec<Statement>, zeros: Vec<Statement>) -> Vec<Statement> {
     let (n, z) = (
         body.iter().filter(|s| s.defined.is_empty()).count(),
