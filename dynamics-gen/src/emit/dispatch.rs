@@ -2814,6 +2814,18 @@ mod tests {
             !out.contains("self . g (") && !out.contains("self . h ("),
             "{out}"
         );
+        // A function whose copies return the struct's union: its value is read.
+        let written = ["h".to_string()].into();
+        let out = with_bodies_called(body.clone(), &bodies, &written).to_string();
+        assert!(
+            out.contains("unsafe { self . h_body :: < true > (b) . value }"),
+            "{out}"
+        );
+        assert!(
+            out.contains("unsafe { self . h_portable (c) . value }"),
+            "{out}"
+        );
+        assert!(out.contains("self . g_portable (a , {"), "{out}");
         assert!(calls_any(&body, &["h".to_string()], "g"));
         assert!(!calls_any(&body, &["h".to_string()], "h"));
         assert!(!calls_any(&body, &["m".to_string()], "g"));

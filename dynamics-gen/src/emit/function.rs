@@ -2396,6 +2396,40 @@ mod tests {
     }
 
     #[test]
+    fn zero_writes_are_spread_evenly_among_the_stores() {
+        use super::{with_zero_writes, ExprId, Statement};
+        // A statement named by its tokens: `t` defines a value, `s` stores, `z` writes zeros.
+        let statement = |name: &str, defines: bool| Statement {
+            defined: if defines {
+                vec![(quote::format_ident!("{}", name), ExprId(0))]
+            } else {
+                Vec::new()
+            },
+            tokens: name.parse().expect("an identifier"),
+            reads: Vec::new(),
+        };
+        let body = vec![
+            statement("t0", true),
+            statement("s0", false),
+            statement("t1", true),
+            statement("s1", false),
+            statement("s2", false),
+            statement("t2", true),
+            statement("s3", false),
+        ];
+        let zeros = vec![statement("z0", false), statement("z1", false)];
+        let order: Vec<String> = with_zero_writes(body, zeros)
+            .iter()
+            .map(|s| s.tokens.to_string())
+            .collect();
+        // Zero j of 2 after store i of 4 (from 1) for the smallest i with 4 j < 2 i.
+        assert_eq!(
+            order,
+            ["t0", "s0", "z0", "t1", "s1", "s2", "z1", "t2", "s3"]
+        );
+    }
+
+    #[test]
     fn a_store_follows_the_last_statement_it_reads() {
         use super::{stores_early, ExprId, Statement};
         let statement = |defined: &[u32], reads: &[u32]| Statement {
