@@ -234,6 +234,14 @@ const STORED_MIN_LIVE: usize = 64;
 /// whatever their size; wall-clock times stayed within the ±15 % of build-to-build noise.
 const PART_LETS: usize = 512;
 
+/// A stored result is written into [`FunctionBody::written`]'s union (not zeroed first) only
+/// when it has at least this many entries. Measured (old and new code `include!`d in one
+/// binary, interleaved; 2026-12-07): the union gained on every result of 18 entries or more
+/// (Solo-12's bias −7.4 %, the 7-joint arms' `M⁻¹` −3.5 and −5.7 %, G1's mass matrix −6.5 %),
+/// and lost 1–2 % on the arms' bias, 7 entries (the Panda +1.8, +1.3 %; rand7 +0.8, +1.9 %),
+/// whose zeroing is one or two vector stores.
+const WRITTEN_MIN_ENTRIES: usize = 16;
+
 /// The union [`FunctionBody::written`] names for the struct `name`: `{name}Written`.
 pub(super) fn written_union(name: &Ident) -> Ident {
     format_ident!("{}Written", name)
@@ -1662,10 +1670,20 @@ impl FunctionBody<'_> {
         }
     }
 
-    /// [`Self::written`] where the result is the body's own: not for an
-    /// [`Output::StoredLower`], which writes into the caller's matrix (and nothing else).
+    /// [`Self::written`] where the result is the body's own and has at least
+    /// [`WRITTEN_MIN_ENTRIES`] entries: not for an [`Output::StoredLower`], which writes into
+    /// the caller's matrix (and nothing else), nor for a small vector, which is zeroed.
     fn written_union(&self) -> Option<&Ident> {
-        self.written.filter(|_| self.output != Output::StoredLower)
+        let entries = match self.output {
+            Output::StoredMatrix => self.rows * self.cols,
+            Output::Tuple {
+                shapes,
+                stored_first: true,
+                ..
+            } => shapes[0].0 * shapes[0].1,
+            _ => 0,
+        };
+        self.written.filter(|_| entries >= WRITTEN_MIN_ENTRIES)
     }
 
     /// The writes of `0.0` into the entries of a stored result that [`Self::stores`] leaves
@@ -2632,6 +2650,20 @@ mod tests {
             .generate()
             .expect("generates");
         assert!(!body_of(&code, "coriolis").contains("letmutm="));
+        // rand7's bias is stored too, but its 7 entries into a zeroed vector, not the union
+        // (`WRITTEN_MIN_ENTRIES`), whose copies return the vector itself; its `M⁻¹`'s 49 into
+        // the union.
+        let code = crate::Builder::new("rand7")
+            .no_runtime_trait()
+            .functions(["coriolis", "mass_matrix_inverse"])
+            .generate()
+            .expect("generates");
+        let body = body_of(&code, "coriolis");
+        assert!(body.contains("letmutm=::nalgebra::SVector::<f64,7>::zeros();"));
+        assert!(body.contains("m.data.0[0][6]=") && !body.contains("unsafe{m"));
+        assert!(code.contains("return unsafe { self.coriolis_avx2(q, qd) };"));
+        let body = body_of(&code, "mass_matrix_inverse");
+        assert!(body.contains("letmutm:Rand7Written<::nalgebra::SMatrix<f64,7,7>>="));
     }
 
     #[test]
