@@ -238,8 +238,9 @@ const PART_LETS: usize = 512;
 /// when it has at least this many entries. Measured (old and new code `include!`d in one
 /// binary, interleaved; 2026-12-07): the union gained on every result of 18 entries or more
 /// (Solo-12's bias −7.4 %, the 7-joint arms' `M⁻¹` −3.5 and −5.7 %, G1's mass matrix −6.5 %),
-/// and lost 1–2 % on the arms' bias, 7 entries (the Panda +1.8, +1.3 %; rand7 +0.8, +1.9 %),
-/// whose zeroing is one or two vector stores.
+/// and lost 1–2 % on the arms' bias, 7 entries (the Panda +1.8, +1.3 %; rand7 +0.8, +1.9 %;
+/// AMD Zen 4), whose zeroing is one or two vector stores. Zeroed again, on a Zen 3: rand7's
+/// −1 to −2 %, the Panda's ±2 %.
 const WRITTEN_MIN_ENTRIES: usize = 16;
 
 /// The union [`FunctionBody::written`] names for the struct `name`: `{name}Written`.
@@ -1654,18 +1655,29 @@ impl FunctionBody<'_> {
     /// its shape: an [`Output::StoredMatrix`] (`m`), or the first of an [`Output::Tuple`] with
     /// `stored_first` (`m.0`).
     fn stored_place(&self) -> Option<(TokenStream, usize, usize)> {
+        let (rows, cols) = self.stored_shape()?;
         let m = match self.written_union() {
             Some(_) => quote!(m.value),
             None => quote!(m),
         };
+        let place = match self.output {
+            Output::StoredLower => quote!(m),
+            Output::Tuple { .. } => quote!(#m.0),
+            _ => m,
+        };
+        Some((place, rows, cols))
+    }
+
+    /// The shape of the matrix [`Self::stored_place`] names: an [`Output::StoredMatrix`]'s or
+    /// [`Output::StoredLower`]'s, or the first of an [`Output::Tuple`] with `stored_first`.
+    fn stored_shape(&self) -> Option<(usize, usize)> {
         match self.output {
-            Output::StoredMatrix => Some((m, self.rows, self.cols)),
-            Output::StoredLower => Some((quote!(m), self.rows, self.cols)),
+            Output::StoredMatrix | Output::StoredLower => Some((self.rows, self.cols)),
             Output::Tuple {
                 shapes,
                 stored_first: true,
                 ..
-            } => Some((quote!(#m.0), shapes[0].0, shapes[0].1)),
+            } => Some(shapes[0]),
             _ => None,
         }
     }
@@ -1674,16 +1686,12 @@ impl FunctionBody<'_> {
     /// [`WRITTEN_MIN_ENTRIES`] entries: not for an [`Output::StoredLower`], which writes into
     /// the caller's matrix (and nothing else), nor for a small vector, which is zeroed.
     fn written_union(&self) -> Option<&Ident> {
-        let entries = match self.output {
-            Output::StoredMatrix => self.rows * self.cols,
-            Output::Tuple {
-                shapes,
-                stored_first: true,
-                ..
-            } => shapes[0].0 * shapes[0].1,
-            _ => 0,
-        };
-        self.written.filter(|_| entries >= WRITTEN_MIN_ENTRIES)
+        self.written.filter(|_| {
+            self.output != Output::StoredLower
+                && self
+                    .stored_shape()
+                    .is_some_and(|(rows, cols)| rows * cols >= WRITTEN_MIN_ENTRIES)
+        })
     }
 
     /// The writes of `0.0` into the entries of a stored result that [`Self::stores`] leaves
