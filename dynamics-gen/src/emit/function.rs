@@ -1661,7 +1661,6 @@ impl FunctionBody<'_> {
             None => quote!(m),
         };
         let place = match self.output {
-            Output::StoredLower => quote!(m),
             Output::Tuple { .. } => quote!(#m.0),
             _ => m,
         };
