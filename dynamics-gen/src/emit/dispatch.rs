@@ -310,8 +310,6 @@ struct Used {
     vector: std::collections::BTreeSet<String>,
     /// Whether a copy aligns its frame (`align_frame`, [`aligns_frame`]).
     align_frame: bool,
-    /// Whether an AVX2 copy aligns its code (`align_code`, [`align_code_helper`]).
-    align_code: bool,
     /// The dispatched single-state functions' names and whether their bodies have `FAR`
     /// ([`with_bodies_called`]).
     bodies: BTreeMap<String, bool>,
@@ -450,7 +448,6 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
     let wide = wide_cond();
     let vector = vector_helpers(&quote!(#[cfg(#wide)]), &used.vector, scalar);
     let align_frame = align_frame_helper(used);
-    let align_code = used.align_code.then(align_code_helper);
     quote! {
         #mul_add
         #sin_cos
@@ -536,8 +533,6 @@ fn helpers(scalar: Scalar, used: &Used) -> TokenStream {
         }
 
         #align_frame
-
-        #align_code
     }
 }
 
@@ -564,36 +559,6 @@ fn align_frame_helper(used: &Used) -> Option<TokenStream> {
         }
         }
     })
-}
-
-/// The helper every AVX2 copy calls first (`Self::align_code()`).
-fn align_code_helper() -> TokenStream {
-    let avx2_cfg = avx2_cfg();
-    quote! {
-        /// The first statement of every AVX2 copy (after `align_frame`, where it has
-        /// one): a jump over the assembler's padding to the next 64-byte boundary, so that
-        /// the copy's body starts a 64-byte block of code wherever the linker puts the
-        /// function. On an AMD Zen 3 the time of a large straight-line body followed where it
-        /// began within its 64-byte block: byte-identical copies of TALOS' inverse dynamics in
-        /// one binary ran at 213–224 ns or at 283–318 ns by that start alone, rand7's forward
-        /// dynamics at 220 or 289 ns; with the body aligned every copy ran at the faster time,
-        /// and the small bodies (gravity, `J_s`) as before. The jump changes no register,
-        /// flag or memory.
-        #avx2_cfg
-        #[inline(always)]
-        #[allow(unsafe_code)]
-        fn align_code() {
-            // SAFETY: a jump to the label right after the padding; nothing is read or written.
-            unsafe {
-                ::core::arch::asm!(
-                    "jmp 2f",
-                    ".p2align 6",
-                    "2:",
-                    options(nomem, nostack, preserves_flags)
-                );
-            }
-        }
-    }
 }
 
 /// The items of an impl body, each eligible function dispatched (noted in `used`). A batch
@@ -914,7 +879,6 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
     });
     let align = aligns_frame(&body, is_batch).then(|| quote!(Self::align_frame();));
     used.align_frame |= align.is_some();
-    used.align_code = true;
     let far_before = used.far;
     let fused = wide_body(body, used, Some(&far_call));
     let exits = used.far > far_before;
@@ -1169,7 +1133,6 @@ fn dispatched(item: &[TokenTree], sig: Signature, used: &mut Used, scalar: Scala
         #[allow(unsafe_code, improper_ctypes_definitions)]
         unsafe extern "C" fn #mid #fast_generics (#args) #copy_ret {
             #align
-            Self::align_code();
             #mid_call
         }
 
