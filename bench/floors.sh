@@ -25,12 +25,26 @@
 #                     Zen 3 and Zen 4, 2 on Intel's Emerald Rapids; the zeroing counted as
 #                     32-byte stores)
 #   floor_fetch       for a copy larger than a 32 KB instruction cache: bytes / FETCH, the
-#                     rate straight-line code that large runs at (bytes/ns; default: the
-#                     `fetch:` line of `bench/ports.rs`, measured now); `-` for smaller copies
+#                     rate straight-line code runs at from beyond the caches (bytes/ns;
+#                     default: the `fetch:` line of `bench/ports.rs`, measured now; about 16
+#                     bytes a cycle on the Zen 3). With OC=1 (the default for the AVX2 copies on
+#                     an AMD core, where the op cache model below is the Zen 3's), also for a
+#                     copy of whose op cache lines some miss at every call (`full`, below): the
+#                     bytes of those lines / FETCH. `-` for other copies
 #   at20              the reference's median / RATIO: the time the bar allows
 #   needs             floor_mul / at20: the share of the multiplication units' peak the bar needs
 #   reaches           floor_mul / ours: the share the copy reaches now
 #   bound             "fetch", "stores" or "mult": the floors that exceed at20
+#   oc_lines          lines of an AMD Zen 3 op cache the copy's code needs: each 64-byte block
+#                     of code takes one line per 8 instructions (ceil(n / 8)); the op cache has
+#                     512 lines, 8 in each of 64 sets (the block's address bits 6-11)
+#   full              of those 64 sets, how many the copy fills to 8 lines or more by itself,
+#                     and after the slash how many it overfills: a call walks through every
+#                     line once, so in an overfilled set each line misses at every call (least
+#                     recently used), and in a full one as soon as any other code run in the
+#                     same loop (the caller's) lands there. Measured on a Zen 3: such a copy
+#                     then runs from the decoders at the rate of its bytes, up to 45 % slower
+#                     (the sixty-fourth section of docs/performance.md)
 # A cell whose `needs` is near or above 100 %, or whose floor_st exceeds at20, cannot reach the
 # bar with that machine code's operations; one whose `reaches` is far below `needs` has room.
 # Counts are exact; the floors ignore everything else (latency, decoding, loads).
@@ -60,7 +74,11 @@ if [ -z "${COPY:-}" ]; then
   grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null &&
     grep -q '^flags.* avx512f' /proc/cpuinfo 2>/dev/null && COPY=avx512
 fi
-echo "clock: $GHZ GHz; fetch beyond 32 KB: $FETCH bytes/ns; stores: $STORES per cycle; copies: _$COPY; bar: ${RATIO}x; binary: $BIN"
+if [ -z "${OC:-}" ]; then
+  OC=0
+  [ "$COPY" = avx2 ] && grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null && OC=1
+fi
+echo "clock: $GHZ GHz; fetch beyond 32 KB$([ "$OC" = 1 ] && echo " or the op cache"): $FETCH bytes/ns; stores: $STORES per cycle; copies: _$COPY; bar: ${RATIO}x; binary: $BIN"
 nm -S --demangle "$BIN" | awk '$3 == "T" || $3 == "t"' >"$SYMS"
 
 # The module a side-by-side label's code is in (tests/src/generated.rs).
@@ -73,8 +91,8 @@ module_of() {
   done
 }
 
-printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %11s %6s %6s %6s %7s %s\n' \
-  robot function instr bytes mult stores spills memset floor_mul floor_st floor_fetch at20 ours needs reaches bound
+printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %11s %6s %6s %6s %7s %8s %7s %s\n' \
+  robot function instr bytes mult stores spills memset floor_mul floor_st floor_fetch at20 ours needs reaches oc_lines full bound
 awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < r + 0 { print $2, $3, $4, $5 }' "$SBS" |
   while read -r label fn ours reference; do
     m=$(module_of "$label")
@@ -87,9 +105,12 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
     objdump -d --no-show-raw-insn -M intel --start-address=$((16#$start)) \
       --stop-address=$((16#$start + 16#$size)) "$BIN" |
       awk -F'\t' -v label="$label" -v fn="$fn" -v bytes=$((16#$size)) -v ghz="$GHZ" -v fetch="$FETCH" -v spc="$STORES" \
-        -v ours="$ours" -v ref="$reference" -v r="$RATIO" '
+        -v ours="$ours" -v ref="$reference" -v r="$RATIO" -v oc="$OC" '
         NF >= 2 && $1 ~ /^ *[0-9a-f]+:$/ {
           n++
+          a = $1
+          gsub(/[ :]/, "", a)
+          block[int(hex(a) / 64)]++
           split($2, w, " ")
           op = w[1]
           args = substr($2, length(op) + 1)
@@ -111,11 +132,20 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
           fm = mult / 2 / ghz
           fs = (stores + memset / 32) / spc / ghz
           at = ref / r
-          ff = bytes > 32768 ? bytes / fetch : 0
+          for (b in block) {
+            l = int((block[b] + 7) / 8)
+            lines += l
+            set[b % 64] += l
+          }
+          for (k in set) {
+            if (set[k] >= 8) full++
+            if (set[k] > 8) { over++; missed += set[k] }
+          }
+          ff = bytes > 32768 ? bytes / fetch : (oc && missed ? bytes * missed / lines / fetch : 0)
           bound = (ff > at ? " fetch" : "") (fs > at ? " stores" : "") (fm > at ? " mult" : "")
-          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %11s %6.1f %6.1f %5.0f%% %6.0f%% %s\n",
+          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %11s %6.1f %6.1f %5.0f%% %6.0f%% %8d %7s %s\n",
             label, fn, n, bytes, mult, stores, spills, memset, fm, fs,
             (ff > 0 ? sprintf("%.1f", ff) : "-"), at, ours, 100 * fm / at, 100 * fm / ours,
-            substr(bound, 2)
+            lines, full + 0 "/" over + 0, substr(bound, 2)
         }'
   done
