@@ -35,9 +35,10 @@
 #   needs             floor_mul / at20: the share of the multiplication units' peak the bar needs
 #   reaches           floor_mul / ours: the share the copy reaches now
 #   bound             "fetch", "stores" or "mult": the floors that exceed at20
-#   oc_lines          lines of an AMD Zen 3 op cache the copy's code needs: each 64-byte block
-#                     of code takes one line per 8 instructions (ceil(n / 8)); the op cache has
-#                     512 lines, 8 in each of 64 sets (the block's address bits 6-11)
+#   oc_lines          lines of an AMD Zen 3 op cache the copy's code needs, by a model of its
+#                     4K operations that fits what was measured: each 64-byte block of code
+#                     takes one line per 8 instructions (ceil(n / 8)), 512 lines, 8 in each of
+#                     64 sets (the block's address bits 6-11)
 #   full              of those 64 sets, how many the copy fills to 8 lines or more by itself,
 #                     and after the slash how many it overfills: a call walks through every
 #                     line once, so in an overfilled set each line misses at every call (least
