@@ -45,7 +45,7 @@
 #                     recently used), and in a full one as soon as any other code run in the
 #                     same loop (the caller's) lands there. Measured on a Zen 3: such a copy
 #                     then runs from the decoders at the rate of its bytes, up to 45 % slower
-#                     (the sixty-fourth section of docs/performance.md)
+#                     (docs/performance.md, the sixty-fourth session's section)
 # A cell whose `needs` is near or above 100 %, or whose floor_st exceeds at20, cannot reach the
 # bar with that machine code's operations; one whose `reaches` is far below `needs` has room.
 # Counts are exact; the floors ignore everything else (latency, decoding, loads).
