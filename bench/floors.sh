@@ -70,14 +70,15 @@ if [ -z "${GHZ:-}" ] || [ -z "${FETCH:-}" ] || [ -z "${STORES:-}" ]; then
   [ -n "$GHZ" ] && [ -n "$FETCH" ] && [ -n "$STORES" ] ||
     { echo "floors.sh: no clock, fetch or store rate from bench/ports.rs (x86-64 only); set GHZ, FETCH and STORES" >&2; exit 1; }
 fi
+AMD=0
+grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null && AMD=1
 if [ -z "${COPY:-}" ]; then
   COPY=avx2
-  grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null &&
-    grep -q '^flags.* avx512f' /proc/cpuinfo 2>/dev/null && COPY=avx512
+  [ "$AMD" = 1 ] && grep -q '^flags.* avx512f' /proc/cpuinfo 2>/dev/null && COPY=avx512
 fi
 if [ -z "${OC:-}" ]; then
   OC=0
-  [ "$COPY" = avx2 ] && grep -q '^vendor_id.*AuthenticAMD' /proc/cpuinfo 2>/dev/null && OC=1
+  [ "$COPY" = avx2 ] && [ "$AMD" = 1 ] && OC=1
 fi
 echo "clock: $GHZ GHz; fetch beyond 32 KB$([ "$OC" = 1 ] && echo " or the op cache"): $FETCH bytes/ns; stores: $STORES per cycle; copies: _$COPY; bar: ${RATIO}x; binary: $BIN"
 nm -S --demangle "$BIN" | awk '$3 == "T" || $3 == "t"' >"$SYMS"
