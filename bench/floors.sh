@@ -15,6 +15,12 @@
 #   mult              multiplication slots: vmul*/vfma*/vfnma*/vfms*/vfnms*, a 512-bit one twice
 #                     (Zen 4 has two units, and a zmm operation takes both)
 #   stores, spills    stores to memory (any width), of which to the stack ([rsp ...])
+#   reloads           moves from the stack into a register (vmov* reg, [rsp ...]; a reload
+#                     folded into an arithmetic instruction as its memory operand not counted)
+#   lane              instructions that move values between lanes or registers' halves, build
+#                     or take apart packs: shuffles, permutes, unpacks, blends, inserts,
+#                     extracts, broadcasts and duplicates, and the sign flips and masks
+#                     (vxorpd/vandpd and their integer forms) other than zeroing a register
 #   memset            bytes zeroed by calls of memset (a result zeroed before its entries are
 #                     written; the size from the `mov edx` before the call)
 #   floor_mul         mult / 2 cycles, in ns at GHZ (default: the clock `bench/ports.rs`
@@ -93,8 +99,8 @@ module_of() {
   done
 }
 
-printf '%-18s %-30s %6s %6s %5s %6s %6s %6s %9s %8s %11s %6s %6s %6s %7s %8s %7s %s\n' \
-  robot function instr bytes mult stores spills memset floor_mul floor_st floor_fetch at20 ours needs reaches oc_lines full bound
+printf '%-18s %-30s %6s %6s %5s %6s %6s %7s %5s %6s %9s %8s %11s %6s %6s %6s %7s %8s %7s %s\n' \
+  robot function instr bytes mult stores spills reloads lane memset floor_mul floor_st floor_fetch at20 ours needs reaches oc_lines full bound
 awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < r + 0 { print $2, $3, $4, $5 }' "$SBS" |
   while read -r label fn ours reference; do
     m=$(module_of "$label")
@@ -121,7 +127,10 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
           if (args ~ /^ *[A-Z]+ PTR \[/ && op !~ /^(cmp|test|prefetch)/) {
             stores++
             if (args ~ /^ *[A-Z]+ PTR \[rsp/) spills++
-          }
+          } else if (op ~ /^v?mov/ && args ~ /PTR \[rsp/) reloads++
+          if (op ~ /^v(shuf|perm|unpck|blend|pblend|insert|extract|broadcast|pbroadcast|movddup|movlhps|movhlps|movhpd|movlpd)/ ||
+              (op ~ /^v(xorp|andp|andnp|pxor|pand|pandn)/ && !(split(args, o, ",") == 3 && o[1] == o[2] && o[2] == o[3])))
+            lane++
           if (op == "mov" && args ~ /^ *edx,0x[0-9a-f]+$/) edx = substr(args, index(args, "0x") + 2)
           if (op == "call" && args ~ /memset/) memset += hex(edx)
         }
@@ -145,8 +154,8 @@ awk -F'\t' -v r="$RATIO" '$1 == "side-by-side" && $3 !~ /_x[0-9]+$/ && $6 + 0 < 
           }
           ff = bytes > 32768 ? bytes / fetch : (oc && missed ? bytes * missed / lines / fetch : 0)
           bound = (ff > at ? " fetch" : "") (fs > at ? " stores" : "") (fm > at ? " mult" : "")
-          printf "%-18s %-30s %6d %6d %5d %6d %6d %6d %9.1f %8.1f %11s %6.1f %6.1f %5.0f%% %6.0f%% %8d %7s %s\n",
-            label, fn, n, bytes, mult, stores, spills, memset, fm, fs,
+          printf "%-18s %-30s %6d %6d %5d %6d %6d %7d %5d %6d %9.1f %8.1f %11s %6.1f %6.1f %5.0f%% %6.0f%% %8d %7s %s\n",
+            label, fn, n, bytes, mult, stores, spills, reloads, lane, memset, fm, fs,
             (ff > 0 ? sprintf("%.1f", ff) : "-"), at, ours, 100 * fm / at, 100 * fm / ours,
             lines, full + 0 "/" over + 0, substr(bound, 2)
         }'
