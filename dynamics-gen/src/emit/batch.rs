@@ -146,6 +146,7 @@ pub fn batch_functions(
                 ready: &[],
                 pack: ALIKE_PACKS,
                 park: false,
+                order: super::schedule::Order::Demand,
                 written: None,
                 plan: None,
                 reads_jacobian: &[],

@@ -808,6 +808,11 @@ fn body_tokens_with(
         ready: &[],
         pack,
         park: options.cpu_dispatch && !options.no_std && park::PARKED.contains(&name),
+        order: if schedule::LEVEL_ORDER.contains(&name) {
+            schedule::Order::Level
+        } else {
+            schedule::Order::Demand
+        },
         written: written
             .as_ref()
             .filter(|_| options.cpu_dispatch && !options.no_std),

@@ -1,4 +1,6 @@
-//! The order of a function body's `let` statements: demand-driven, to shorten live ranges.
+//! The order of a function body's `let` statements: demand-driven, to shorten live ranges
+//! ([`demand_order`]), or highest level first, for instruction-level parallelism
+//! ([`level_order`], the bodies of [`LEVEL_ORDER`]).
 //!
 //! The graph creates nodes in the order of the recursion (a forward pass over every link, then
 //! a backward one), and a `let` written where its node was created can stay live across most
@@ -14,6 +16,34 @@
 //! cone is larger first, so that its result is the one held while the smaller cone is
 //! computed. Every statement keeps its tokens, so values and their rounding are unchanged:
 //! only the order of the `let`s changes.
+
+/// How a body's statements are ordered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Order {
+    /// [`demand_order`].
+    Demand,
+    /// [`level_order`] (where no statements must come first; [`demand_order`] there).
+    Level,
+}
+
+/// The functions whose bodies are ordered by [`level_order`]: the inverse dynamics (the
+/// recursive Newton–Euler algorithm; with a tip wrench too) and the mass matrix returned by
+/// value (the composite-rigid-body algorithm). Measured on an AMD Zen 3 (the AVX2 copies, the
+/// benchmark binary with every body in level order against HEAD's, three side-by-side runs of
+/// each, medians; `docs/performance.md`, sixty-fifth session): inverse dynamics TALOS' upper
+/// body −26 %, G1 (floating base) −6 %, rand7 −4.5 %, the Panda −4 %, the UR5 and Solo-12
+/// within ±2 %; with a tip wrench the Panda −2.7 %, rand7 −0.7 %; the mass matrix TALOS −26 %,
+/// rand7 −10 %, G1 −1.6 %, the UR5 +2.3 %, Solo-12 +4.1 %. Elsewhere level order lost: G1's
+/// forward dynamics +42 % and TALOS' +12.5 % (the articulated-body algorithm's long-lived
+/// values spill more), the UR5's `J_s` +16 %, rand7's +4.6 %, the `J̇`s +2 to +6 %,
+/// constrained forward dynamics +6 %, the derivatives +2 to +5 %. (rand7's mass matrix, whose
+/// literal keeps more values live in level order, is stored entry by entry now:
+/// `function::STORED_MIN_LIVE`.)
+pub const LEVEL_ORDER: &[&str] = &[
+    "inverse_dynamics",
+    "inverse_dynamics_with_tip",
+    "mass_matrix",
+];
 
 /// A statement of the body for scheduling: the statements whose values it reads.
 pub struct Deps {
@@ -83,6 +113,51 @@ pub fn demand_order(deps: &[Deps], roots: &[usize]) -> Vec<usize> {
     order
 }
 
+/// A list order by levels (Hu, "Parallel sequencing and assembly line problems", Operations
+/// Research 1961: highest level first): a statement's level is the length of the longest
+/// chain of statements from it to one that no statement reads; among the statements whose
+/// operands are placed, the one of highest level comes next, ties in creation order. The
+/// longest chains start as early as their operands allow, and independent chains interleave,
+/// where [`demand_order`] finishes one output's cone before it starts the next's.
+pub fn level_order(deps: &[Deps]) -> Vec<usize> {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let n = deps.len();
+    // Creation order is topological (operands first): levels in one pass from the end.
+    let mut level = vec![0u32; n];
+    for i in (0..n).rev() {
+        for &r in &deps[i].reads {
+            level[r] = level[r].max(level[i] + 1);
+        }
+    }
+    let mut pending = vec![0usize; n];
+    let mut readers: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (i, d) in deps.iter().enumerate() {
+        let mut reads = d.reads.clone();
+        reads.sort_unstable();
+        reads.dedup();
+        pending[i] = reads.len();
+        for r in reads {
+            readers[r].push(i);
+        }
+    }
+    let mut ready: BinaryHeap<(u32, Reverse<usize>)> = (0..n)
+        .filter(|&i| pending[i] == 0)
+        .map(|i| (level[i], Reverse(i)))
+        .collect();
+    let mut order = Vec::with_capacity(n);
+    while let Some((_, Reverse(i))) = ready.pop() {
+        order.push(i);
+        for &u in &readers[i] {
+            pending[u] -= 1;
+            if pending[u] == 0 {
+                ready.push((level[u], Reverse(u)));
+            }
+        }
+    }
+    order
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,6 +182,23 @@ mod tests {
             }
         }
         assert_eq!(order.last(), Some(&5));
+    }
+
+    #[test]
+    fn levels_put_the_longest_chain_first() {
+        // 0 → 1 → 2 → 5 (a chain of four), 3 → 4 (two), both read by 5; 6 unread.
+        let d = deps(&[&[], &[0], &[1], &[], &[3], &[2, 4], &[]]);
+        let order = level_order(&d);
+        assert_eq!(order, vec![0, 1, 3, 2, 4, 5, 6]);
+        let mut pos = vec![usize::MAX; d.len()];
+        for (p, &i) in order.iter().enumerate() {
+            pos[i] = p;
+        }
+        for (i, s) in d.iter().enumerate() {
+            for &r in &s.reads {
+                assert!(pos[r] < pos[i], "{i} before its operand {r}");
+            }
+        }
     }
 
     #[test]
