@@ -28,17 +28,19 @@ pub enum Order {
 
 /// The functions whose bodies are ordered by [`level_order`]: the inverse dynamics (the
 /// recursive Newton–Euler algorithm; with a tip wrench too) and the mass matrix returned by
-/// value (the composite-rigid-body algorithm). Measured on an AMD Zen 3 (the AVX2 copies, the
-/// benchmark binary with every body in level order against HEAD's, three side-by-side runs of
-/// each, medians; `docs/performance.md`, sixty-fifth session): inverse dynamics TALOS' upper
-/// body −26 %, G1 (floating base) −6 %, rand7 −4.5 %, the Panda −4 %, the UR5 and Solo-12
-/// within ±2 %; with a tip wrench the Panda −2.7 %, rand7 −0.7 %; the mass matrix TALOS −26 %,
-/// rand7 −10 %, G1 −1.6 %, the UR5 +2.3 %, Solo-12 +4.1 %. Elsewhere level order lost: G1's
-/// forward dynamics +42 % and TALOS' +12.5 % (the articulated-body algorithm's long-lived
-/// values spill more), the UR5's `J_s` +16 %, rand7's +4.6 %, the `J̇`s +2 to +6 %,
-/// constrained forward dynamics +6 %, the derivatives +2 to +5 %. (rand7's mass matrix, whose
-/// literal keeps more values live in level order, is stored entry by entry now:
-/// `function::STORED_MIN_LIVE`.)
+/// value (the composite-rigid-body algorithm; a stored one keeps [`demand_order`]). Measured
+/// on an AMD Zen 3, the AVX2 copies (`docs/performance.md`, sixty-fifth session): two copies
+/// each of the old and new inverse dynamics in one scratch binary, medians of 11 rounds, two
+/// runs: rand7 −7.3 %, the Panda −5 %, G1 (floating base) −2 to −3 %, the UR5 +0.6 %, Solo-12
+/// −0.5 % (TALOS' upper body −24 %, a body at the op cache's edge: placement); rand7's inverse
+/// dynamics 1,181 → 1,132 instructions. In the benchmark binary against HEAD's, seven
+/// side-by-side runs of each, the medians of the ratios: inverse dynamics rand7 −6.4 %, G1
+/// −5.3 %, the Panda −4.0 % (with a tip wrench −3.6 %), rand7's mass matrix −13 % (now stored
+/// entry by entry: its literal keeps more values live in level order, `STORED_MIN_LIVE`).
+/// Every body in level order lost elsewhere (the same binary built so): G1's forward dynamics
+/// +42 % and TALOS' +12.5 % (the articulated-body algorithm's long-lived values spill more),
+/// the UR5's `J_s` +16 %, rand7's +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics
+/// +6 %, the derivatives +2 to +5 %.
 pub const LEVEL_ORDER: &[&str] = &[
     "inverse_dynamics",
     "inverse_dynamics_with_tip",
