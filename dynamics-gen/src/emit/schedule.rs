@@ -10,12 +10,16 @@
 //! allocation), so on the 16 vector registers of the default x86-64 target such a body spills
 //! hundreds of values to the stack.
 //!
-//! The schedule here is a depth-first post-order from the outputs (Sethi & Ullman, "The
+//! [`demand_order`] is a depth-first post-order from the outputs (Sethi & Ullman, "The
 //! generation of optimal code for arithmetic expressions", JACM 1970, for trees): each output
 //! in turn, before a statement the statements it reads, the operand whose still-unscheduled
 //! cone is larger first, so that its result is the one held while the smaller cone is
-//! computed. Every statement keeps its tokens, so values and their rounding are unchanged:
-//! only the order of the `let`s changes.
+//! computed. [`level_order`] is a list schedule by levels (the longest chain of statements
+//! to an output first): it interleaves the outputs' cones, so that more values are live at
+//! once, but the long chains start early; the inverse dynamics and a mass matrix returned by
+//! value ran faster so ([`LEVEL_ORDER`]), every other body slower. Either way every statement
+//! keeps its tokens, so values and their rounding are unchanged: only the order of the `let`s
+//! changes.
 
 /// How a body's statements are ordered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,25 +31,23 @@ pub enum Order {
 }
 
 /// The functions whose bodies are ordered by [`level_order`]: the inverse dynamics (the
-/// recursive Newton–Euler algorithm; with a tip wrench too) and the mass matrix returned by
-/// value (the composite-rigid-body algorithm; a stored one keeps [`demand_order`]). Measured
-/// on an AMD Zen 3, the AVX2 copies (`docs/performance.md`, sixty-fifth session): two copies
-/// each of the old and new inverse dynamics in one scratch binary, medians of 11 rounds, two
-/// runs: rand7 −7.3 %, the Panda −5 %, G1 (floating base) −2 to −3 %, the UR5 +0.6 %, Solo-12
-/// −0.5 % (TALOS' upper body −24 %, a body at the op cache's edge: placement); rand7's inverse
-/// dynamics 1,181 → 1,132 instructions. In the benchmark binary against HEAD's, seven
-/// side-by-side runs of each, the medians of the ratios: inverse dynamics rand7 −6.4 %, G1
-/// −5.3 %, the Panda −4.0 % (with a tip wrench −3.6 %), rand7's mass matrix −13 % (now stored
-/// entry by entry: its literal keeps more values live in level order, `STORED_MIN_LIVE`).
-/// Every body in level order lost elsewhere (the same binary built so): G1's forward dynamics
-/// +42 % and TALOS' +12.5 % (the articulated-body algorithm's long-lived values spill more),
-/// the UR5's `J_s` +16 %, rand7's +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics
-/// +6 %, the derivatives +2 to +5 %.
-pub const LEVEL_ORDER: &[&str] = &[
-    "inverse_dynamics",
-    "inverse_dynamics_with_tip",
-    "mass_matrix",
-];
+/// recursive Newton–Euler algorithm) and the mass matrix returned by value (the
+/// composite-rigid-body algorithm; a stored one keeps [`demand_order`]). Measured on an AMD
+/// Zen 3, the AVX2 copies (`docs/performance.md`, sixty-fifth session): two copies each of
+/// the old and new inverse dynamics in one scratch binary, medians of 11 rounds, two runs:
+/// rand7 −7.3 %, the Panda −5 %, G1 (floating base) −2 to −3 %, the UR5 +0.6 %, Solo-12
+/// −0.5 % (TALOS' upper body −24 %, a body at the op cache's edge: placement); the AVX2
+/// copies' instructions rand7 1,181 → 1,132, the Panda 907 → 885, G1 3,523 → 3,507. In the
+/// benchmark binary against HEAD's, seven side-by-side runs of each, the medians of the
+/// ratios: inverse dynamics rand7 −6.4 %, G1 −5.3 %, the Panda −4.0 %; rand7's mass matrix
+/// −13 % (1,066 → 978 instructions; now stored entry by entry, as its literal keeps more
+/// values live in level order: `STORED_MIN_LIVE`). Left in demand order: the inverse dynamics
+/// with a tip wrench (rand7's 1,164 → 1,241 instructions in level order, its time within the
+/// noise), and every other body, where level order lost (a benchmark binary with every body
+/// so): G1's forward dynamics 8,659 → 10,646 instructions and +42 %, TALOS' +12.5 % (the
+/// articulated-body algorithm's long-lived values spill more), the UR5's `J_s` +16 %, rand7's
+/// +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics +6 %, the derivatives +2 to +5 %.
+pub const LEVEL_ORDER: &[&str] = &["inverse_dynamics", "mass_matrix"];
 
 /// A statement of the body for scheduling: the statements whose values it reads.
 pub struct Deps {
