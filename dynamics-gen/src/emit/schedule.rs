@@ -39,9 +39,9 @@ pub enum Order {
 /// −0.5 % (TALOS' upper body −24 %, a body at the op cache's edge: placement); the AVX2
 /// copies' instructions rand7 1,181 → 1,132, the Panda 907 → 885, G1 3,523 → 3,507. In the
 /// benchmark binary against HEAD's, seven side-by-side runs of each, the medians of the
-/// ratios: inverse dynamics rand7 −6.4 %, G1 −5.3 %, the Panda −4.0 %; rand7's mass matrix
-/// −13 % (1,066 → 978 instructions; now stored entry by entry, as its literal keeps more
-/// values live in level order: `STORED_MIN_LIVE`). Left in demand order: the inverse dynamics
+/// ratios (two builds): inverse dynamics rand7 −4.8 and −6.4 %, G1 −3.7 and −5.3 %, the Panda
+/// −4.2 and −4.0 %; rand7's mass matrix −9.7 and −13 % (1,066 → 978 instructions; now stored
+/// entry by entry, as its literal keeps more values live in level order: `STORED_MIN_LIVE`). Left in demand order: the inverse dynamics
 /// with a tip wrench (rand7's 1,164 → 1,241 instructions in level order, its time within the
 /// noise), and every other body, where level order lost (a benchmark binary with every body
 /// so): G1's forward dynamics 8,659 → 10,646 instructions and +42 %, TALOS' +12.5 % (the
