@@ -41,10 +41,10 @@ pub enum Order {
 /// benchmark binary against HEAD's, seven side-by-side runs of each, the medians of the
 /// ratios (two builds): inverse dynamics rand7 −4.8 and −6.4 %, G1 −3.7 and −5.3 %, the Panda
 /// −4.2 and −4.0 %; rand7's mass matrix −9.7 and −13 % (1,066 → 978 instructions; now stored
-/// entry by entry, as its literal keeps more values live in level order: `STORED_MIN_LIVE`). Left in demand order: the inverse dynamics
-/// with a tip wrench (rand7's 1,164 → 1,241 instructions in level order, its time within the
-/// noise), and every other body, where level order lost (a benchmark binary with every body
-/// so): G1's forward dynamics 8,659 → 10,646 instructions and +42 %, TALOS' +12.5 % (the
+/// entry by entry, as its literal keeps more values live in level order: `STORED_MIN_LIVE`).
+/// Left in demand order: the inverse dynamics with a tip wrench (rand7's 1,164 → 1,241
+/// instructions in level order, its time within the noise), and every other body, where level
+/// order lost (a benchmark binary with every body so): G1's forward dynamics 8,659 → 10,646 instructions and +42 %, TALOS' +12.5 % (the
 /// articulated-body algorithm's long-lived values spill more), the UR5's `J_s` +16 %, rand7's
 /// +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics +6 %, the derivatives +2 to +5 %.
 pub const LEVEL_ORDER: &[&str] = &["inverse_dynamics", "mass_matrix"];
@@ -170,11 +170,9 @@ mod tests {
         reads.iter().map(|r| Deps { reads: r.to_vec() }).collect()
     }
 
-    #[test]
-    fn every_statement_once_after_what_it_reads() {
-        // 0, 1 leaves; 2 = f(0, 1); 3 = f(0); 4 = f(2, 3); 5 unreached by the roots.
-        let d = deps(&[&[], &[], &[0, 1], &[0], &[2, 3], &[1]]);
-        let order = demand_order(&d, &[4]);
+    /// `order` is a permutation of `d`'s statements with every statement after what it reads.
+    fn assert_every_statement_once_after_its_operands(d: &[Deps], order: &[usize]) {
+        assert_eq!(order.len(), d.len(), "every statement");
         let mut pos = vec![usize::MAX; d.len()];
         for (p, &i) in order.iter().enumerate() {
             assert_eq!(pos[i], usize::MAX, "statement {i} twice");
@@ -185,6 +183,14 @@ mod tests {
                 assert!(pos[r] < pos[i], "{i} before its operand {r}");
             }
         }
+    }
+
+    #[test]
+    fn every_statement_once_after_what_it_reads() {
+        // 0, 1 leaves; 2 = f(0, 1); 3 = f(0); 4 = f(2, 3); 5 unreached by the roots.
+        let d = deps(&[&[], &[], &[0, 1], &[0], &[2, 3], &[1]]);
+        let order = demand_order(&d, &[4]);
+        assert_every_statement_once_after_its_operands(&d, &order);
         assert_eq!(order.last(), Some(&5));
     }
 
@@ -194,15 +200,7 @@ mod tests {
         let d = deps(&[&[], &[0], &[1], &[], &[3], &[2, 4], &[]]);
         let order = level_order(&d);
         assert_eq!(order, vec![0, 1, 3, 2, 4, 5, 6]);
-        let mut pos = vec![usize::MAX; d.len()];
-        for (p, &i) in order.iter().enumerate() {
-            pos[i] = p;
-        }
-        for (i, s) in d.iter().enumerate() {
-            for &r in &s.reads {
-                assert!(pos[r] < pos[i], "{i} before its operand {r}");
-            }
-        }
+        assert_every_statement_once_after_its_operands(&d, &order);
     }
 
     #[test]
