@@ -33,20 +33,21 @@ pub enum Order {
 /// The functions whose bodies are ordered by [`level_order`]: the inverse dynamics (the
 /// recursive Newton–Euler algorithm) and the mass matrix returned by value (the
 /// composite-rigid-body algorithm; a stored one keeps [`demand_order`]). Measured on an AMD
-/// Zen 3, the AVX2 copies (`docs/performance.md`, sixty-fifth session): two copies each of
-/// the old and new inverse dynamics in one scratch binary, medians of 11 rounds, two runs:
-/// rand7 −7.3 %, the Panda −5 %, G1 (floating base) −2 to −3 %, the UR5 +0.6 %, Solo-12
-/// −0.5 % (TALOS' upper body −24 %, a body at the op cache's edge: placement); the AVX2
-/// copies' instructions rand7 1,181 → 1,132, the Panda 907 → 885, G1 3,523 → 3,507. In the
-/// benchmark binary against HEAD's, seven side-by-side runs of each, the medians of the
-/// ratios (two builds): inverse dynamics rand7 −4.8 and −6.4 %, G1 −3.7 and −5.3 %, the Panda
-/// −4.2 and −4.0 %; rand7's mass matrix −9.7 and −13 % (1,066 → 978 instructions; now stored
-/// entry by entry, as its literal keeps more values live in level order: `STORED_MIN_LIVE`).
-/// Left in demand order: the inverse dynamics with a tip wrench (rand7's 1,164 → 1,241
-/// instructions in level order, its time within the noise), and every other body, where level
-/// order lost (a benchmark binary with every body so): G1's forward dynamics 8,659 → 10,646 instructions and +42 %, TALOS' +12.5 % (the
-/// articulated-body algorithm's long-lived values spill more), the UR5's `J_s` +16 %, rand7's
-/// +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics +6 %, the derivatives +2 to +5 %.
+/// Zen 3, the AVX2 copies (`docs/performance.md`, sixty-fifth session): two copies each of the
+/// old and new inverse dynamics in one scratch binary, medians of 11 rounds, two runs: rand7
+/// −7.3 %, the Panda −5 %, G1 (floating base) −2 to −3 %, the UR5 +0.6 %, Solo-12 −0.5 %
+/// (TALOS' upper body −24 %, a body at the op cache's edge: placement); the AVX2 copies'
+/// instructions rand7 1,181 → 1,132, the Panda 907 → 885, G1 3,523 → 3,507. In the benchmark
+/// binary against HEAD's, seven side-by-side runs of each, the medians of the ratios (two
+/// builds): inverse dynamics rand7 −4.8 and −6.4 %, G1 −3.7 and −5.3 %, the Panda −4.2 and
+/// −4.0 %; rand7's mass matrix −9.7 and −13 % (1,066 → 978 instructions; now stored entry by
+/// entry, as its literal keeps more values live in level order: `STORED_MIN_LIVE`). Left in
+/// demand order: the inverse dynamics with a tip wrench (rand7's 1,164 → 1,241 instructions in
+/// level order, its time within the noise), and every other body, where level order lost (a
+/// benchmark binary with every body so): G1's forward dynamics 8,659 → 10,646 instructions and
+/// +42 %, TALOS' +12.5 % (the articulated-body algorithm's long-lived values spill more), the
+/// UR5's `J_s` +16 %, rand7's +4.6 %, the `J̇`s +2 to +6 %, constrained forward dynamics +6 %,
+/// the derivatives +2 to +5 %.
 pub const LEVEL_ORDER: &[&str] = &["inverse_dynamics", "mass_matrix"];
 
 /// A statement of the body for scheduling: the statements whose values it reads.
